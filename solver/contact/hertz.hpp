@@ -1,0 +1,46 @@
+// Hertz normal contact force with Tsuji-form viscous damping (a pure function of one overlap).
+#pragma once
+
+#include <algorithm>
+#include <cmath>
+
+namespace asperity::contact {
+
+// Parameters of one Hertz pair. K = 4/3 E* √R* (Johnson 1985, eq. 4.23: F = 4/3 E* √R* δ^{3/2}).
+struct HertzParams {
+  double young_eff = 0;   // E*, Pa
+  double radius_eff = 0;  // R*, m (a plane or box counts as infinite radius: R* = the sphere's)
+  double mass_eff = 0;    // m*, kg (a fixed body counts as infinite mass)
+  double zeta = 0;        // dimensionless damping, from restitution_damping.hpp (0: elastic)
+};
+
+struct NormalForce {
+  double force = 0;      // repulsive magnitude after clipping at zero (no cohesion), N
+  double elastic = 0;    // elastic part 4/3 E* √R* δ^{3/2}, N
+  double damping = 0;    // viscous part c·δ̇ (may be clipped in `force`), N
+  double stiffness = 0;  // tangent stiffness dF/dδ = 2 E* a, N/m
+  double energy = 0;     // stored elastic energy 8/15 E* √R* δ^{5/2}, J
+};
+
+inline double hertz_constant(const HertzParams& p) {
+  return 4.0 / 3.0 * p.young_eff * std::sqrt(p.radius_eff);
+}
+
+// overlap δ > 0 (m); overlap_rate δ̇ (m/s, positive while approaching).
+// Damping F_d = ζ √(m* K) δ^{1/4} δ̇ (Tsuji et al. 1992 form: viscous force ∝ √(m* S_n) with
+// the tangent stiffness S_n = 3/2 K δ^{1/2}). For this form the restitution depends on ζ only,
+// not on the impact speed, so ζ(e) is computed once (restitution_damping.hpp). LIGGGHTS writes
+// the same force as 2√(5/6) β √(S_n m*) δ̇, i.e. ζ = √5 β.
+inline NormalForce hertz_normal(double overlap, double overlap_rate, const HertzParams& p) {
+  NormalForce out;
+  const double k = hertz_constant(p);
+  const double sqrt_d = std::sqrt(overlap);
+  out.elastic = k * overlap * sqrt_d;
+  out.stiffness = 1.5 * k * sqrt_d;
+  out.damping = p.zeta * std::sqrt(p.mass_eff * k) * std::sqrt(sqrt_d) * overlap_rate;
+  out.force = std::max(0.0, out.elastic + out.damping);
+  out.energy = 0.4 * out.elastic * overlap;
+  return out;
+}
+
+}  // namespace asperity::contact

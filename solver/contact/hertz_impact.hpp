@@ -1,0 +1,30 @@
+// Closed-form elastic Hertz impact (Johnson 1985, Contact Mechanics, §11.4): the analytic
+// reference the validation gates compare against.
+#pragma once
+
+#include <cmath>
+
+namespace asperity::contact {
+
+// 2 ∫₀¹ dx / √(1 − x^{5/2}) = (4/5) B(2/5, 1/2) (Johnson 1985, eq. 11.24 quotes 2.94).
+inline constexpr double kHertzDurationFactor = 2.9432751843;
+
+struct HertzImpact {
+  double max_overlap = 0;       // δ_max = (15 m* v² / (16 E* √R*))^{2/5}, m (Johnson eq. 11.23)
+  double peak_force = 0;        // F_max = 4/3 E* √R* δ_max^{3/2}, N
+  double contact_duration = 0;  // t_c = 2.9432 δ_max / v, s (Johnson eq. 11.24)
+  double impulse = 0;           // ∫F dt = 2 m* v for an elastic impact, N·s
+};
+
+// m* (kg), R* (m), E* (Pa), approach speed v (m/s).
+inline HertzImpact hertz_impact(double mass_eff, double radius_eff, double young_eff, double v) {
+  HertzImpact h;
+  h.max_overlap =
+      std::pow(15.0 * mass_eff * v * v / (16.0 * young_eff * std::sqrt(radius_eff)), 0.4);
+  h.peak_force = 4.0 / 3.0 * young_eff * std::sqrt(radius_eff) * std::pow(h.max_overlap, 1.5);
+  h.contact_duration = kHertzDurationFactor * h.max_overlap / v;
+  h.impulse = 2.0 * mass_eff * v;
+  return h;
+}
+
+}  // namespace asperity::contact

@@ -1,0 +1,31 @@
+// Errors that cross the program's edge, and the exit codes the contract gives them.
+#pragma once
+
+#include <sstream>
+#include <stdexcept>
+#include <string>
+
+namespace asperity {
+
+// Exit codes (shared/CONTRACT.md): 0 done, 1 anything else, 2 bad input or usage, 3 unstable.
+inline constexpr int kExitOk = 0;
+inline constexpr int kExitFailure = 1;
+inline constexpr int kExitBadInput = 2;
+inline constexpr int kExitUnstable = 3;
+
+// Bad input or usage. The message is one line naming the file, the key (or line) and the problem.
+struct InputError : std::runtime_error {
+  using std::runtime_error::runtime_error;
+};
+
+// A broken invariant inside the solver: always on, never for user input.
+[[noreturn]] inline void invariant_failed(const char* what, const char* file, int line) {
+  std::ostringstream s;
+  s << "internal error: " << what << " (" << file << ":" << line << ")";
+  throw std::logic_error(s.str());
+}
+
+}  // namespace asperity
+
+#define ASPERITY_CHECK(cond) \
+  ((cond) ? static_cast<void>(0) : ::asperity::invariant_failed(#cond, __FILE__, __LINE__))

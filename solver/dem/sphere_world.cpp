@@ -1,0 +1,302 @@
+// Rigid-sphere DEM step: broad phase (Verlet list on a cell grid) → contact forces → integrate.
+#include "dem/sphere_world.hpp"
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+
+#include "contact/hertz.hpp"
+#include "contact/linear_spring_dashpot.hpp"
+#include "contact/tangential_spring.hpp"
+#include "core/error.hpp"
+#include "dem/cell_grid.hpp"
+
+namespace asperity::dem {
+namespace {
+
+using Clock = std::chrono::steady_clock;
+double seconds_since(Clock::time_point t0) {
+  return std::chrono::duration<double>(Clock::now() - t0).count();
+}
+
+// What one contact needs, whatever the pair: geometry and the effective quantities.
+struct ContactGeometry {
+  Vec3 normal;        // unit, from body 2 towards body 1
+  double overlap;     // m
+  Vec3 arm1, arm2;    // contact point relative to each centre, m
+  double radius_eff;  // R*, m
+  double mass_eff;    // m*, kg
+};
+
+struct ContactOutcome {
+  Vec3 force = Vec3::Zero();  // on body 1, N
+  double rate = 0;            // δ̇, m/s
+  double energy = 0;          // stored, J
+  double dissipated = 0;      // this step, J
+};
+
+// Normal and tangential force on body 1 for one touching contact (pure in its arguments).
+ContactOutcome contact_force(const SphereWorld& world, const ContactGeometry& g,
+                             const PairConstants& pc, const Vec3& v_rel, Vec3& spring, double dt) {
+  ContactOutcome out;
+  const Vec3& n = g.normal;
+  out.rate = -v_rel.dot(n);
+  contact::NormalForce fn;
+  double kt = 0, ct = 0;
+  if (world.law.normal == contact::NormalLaw::hertz) {
+    const contact::HertzParams p{.young_eff = pc.young_eff, .radius_eff = g.radius_eff,
+                                 .mass_eff = g.mass_eff, .zeta = pc.zeta};
+    fn = contact::hertz_normal(g.overlap, out.rate, p);
+    // Mindlin no-slip stiffness k_t = 8 G* a (Mindlin 1949); damping of the same Tsuji form.
+    kt = 8.0 * pc.shear_eff * std::sqrt(g.radius_eff * g.overlap);
+    ct = pc.zeta * std::sqrt(g.mass_eff * kt / 1.5);
+  } else {
+    const contact::LinearParams p{.kn = world.law.kn, .mass_eff = g.mass_eff, .zeta = pc.zeta};
+    fn = contact::linear_normal(g.overlap, out.rate, p);
+    kt = world.law.kt;
+    ct = pc.zeta * std::sqrt(g.mass_eff * kt);
+  }
+  out.force = fn.force * n;
+  out.energy = fn.energy;
+  // Work of the non-elastic part of the normal force over this step's overlap change.
+  out.dissipated = (fn.force - fn.elastic) * out.rate * dt;
+  if (world.law.tangential) {
+    const Vec3 vt = v_rel - v_rel.dot(n) * n;
+    // Carry the spring into the current tangent plane, keeping its magnitude.
+    const double mag = spring.norm();
+    Vec3 s = spring - spring.dot(n) * n;
+    if (const double sn = s.norm(); sn > 0) s *= mag / sn;
+    const contact::TangentialParams tp{.stiffness = kt, .damping = ct, .friction = pc.friction};
+    const contact::TangentialForce ft = contact::tangential_spring(s, vt, dt, fn.force, tp);
+    spring = ft.spring;
+    out.force += ft.force;
+    out.energy += ft.energy;
+    out.dissipated += ft.dissipated;
+  }
+  return out;
+}
+
+void rebuild_pairs(SphereWorld& world) {
+  std::vector<PairContact> old = std::move(world.pairs);
+  world.pairs = neighbour_pairs(world.x, world.radius, world.fixed, world.skin);
+  // Carry the tangential history across (both lists sorted by (i, j)).
+  auto it = old.begin();
+  for (PairContact& p : world.pairs) {
+    while (it != old.end() && std::tie(it->i, it->j) < std::tie(p.i, p.j)) ++it;
+    if (it != old.end() && it->i == p.i && it->j == p.j) {
+      p.spring = it->spring;
+      p.touching = it->touching;
+    }
+  }
+  world.x_at_build = world.x;
+  ++world.rebuilds;
+}
+
+bool needs_rebuild(const SphereWorld& world) {
+  if (world.x_at_build.cols() != world.x.cols()) return true;
+  const double limit = 0.25 * world.skin * world.skin;
+  for (int i = 0; i < world.size(); ++i) {
+    if ((world.x.col(i) - world.x_at_build.col(i)).squaredNorm() > limit) return true;
+  }
+  return false;
+}
+
+// Keeps the recorded body's contact timing and restitution bookkeeping.
+void note_record(SphereWorld& w, bool involved, double overlap, bool was, bool now, double rate,
+                 const Vec3& force_on_record) {
+  if (!involved) return;
+  w.record_overlap = std::max(w.record_overlap, overlap);
+  w.record_force += force_on_record;
+  if (!was && now && w.record_contacts_started++ == 0) w.record_approach_speed = rate;
+  if (was && !now && w.record_contacts_ended++ == 0) w.record_separation_speed = -rate;
+}
+
+void compute_forces(SphereWorld& w, double dt) {
+  w.force.setZero();
+  w.torque.setZero();
+  w.contact_energy = 0;
+  w.record_force.setZero();
+  w.record_overlap = -1e300;
+  const int nm = static_cast<int>(w.materials.size());
+
+  for (PairContact& p : w.pairs) {
+    const int i = p.i, j = p.j;
+    const Vec3 d = w.x.col(i) - w.x.col(j);
+    const double dist = d.norm();
+    const double overlap = w.radius[i] + w.radius[j] - dist;
+    const bool involved = w.body[i] == w.record_body || w.body[j] == w.record_body;
+    const bool was = p.touching;
+    if (overlap <= 0 || dist == 0) {
+      if (was) {
+        const Vec3 n = d / dist;
+        const Vec3 v_rel = w.v.col(i) - w.v.col(j);
+        note_record(w, involved, overlap, true, false, -v_rel.dot(n), Vec3::Zero());
+      } else {
+        note_record(w, involved, overlap, false, false, 0, Vec3::Zero());
+      }
+      p.touching = false;
+      p.spring.setZero();
+      continue;
+    }
+    const Vec3 n = d / dist;
+    w.max_overlap_ratio = std::max(w.max_overlap_ratio, overlap / std::min(w.radius[i], w.radius[j]));
+    const double mi = w.fixed[i] ? 0 : w.mass[i], mj = w.fixed[j] ? 0 : w.mass[j];
+    ContactGeometry g{.normal = n,
+                      .overlap = overlap,
+                      .arm1 = -(w.radius[i] - 0.5 * overlap) * n,
+                      .arm2 = (w.radius[j] - 0.5 * overlap) * n,
+                      .radius_eff = w.radius[i] * w.radius[j] / (w.radius[i] + w.radius[j]),
+                      .mass_eff = mi == 0 ? mj : (mj == 0 ? mi : mi * mj / (mi + mj))};
+    const Vec3 v_rel = (w.v.col(i) + w.w.col(i).cross(g.arm1)) -
+                       (w.v.col(j) + w.w.col(j).cross(g.arm2));
+    const ContactOutcome c =
+        contact_force(w, g, w.pair[w.material[i] * nm + w.material[j]], v_rel, p.spring, dt);
+    w.force.col(i) += c.force;
+    w.force.col(j) -= c.force;
+    w.torque.col(i) += g.arm1.cross(c.force);
+    w.torque.col(j) -= g.arm2.cross(c.force);
+    w.contact_energy += c.energy;
+    w.dissipated += c.dissipated;
+    ++w.contact_updates;
+    p.touching = true;
+    const Vec3 on_record = w.body[i] == w.record_body ? c.force : Vec3(-c.force);
+    note_record(w, involved, overlap, was, true, c.rate, on_record);
+  }
+
+  const int n = w.size();
+  for (std::size_t k = 0; k < w.walls.size(); ++k) {
+    const Wall& wall = w.walls[k];
+    for (int i = 0; i < n; ++i) {
+      if (w.fixed[i]) continue;
+      WallContact& h = w.wall_contacts[k * n + i];
+      const Vec3 xi = w.x.col(i);
+      Vec3 normal;
+      double overlap;
+      if (wall.kind == WallKind::plane) {
+        normal = wall.b;
+        overlap = w.radius[i] - (xi - wall.a).dot(normal);
+      } else {
+        const Vec3 closest = xi.cwiseMax(wall.a).cwiseMin(wall.b);
+        const Vec3 diff = xi - closest;
+        const double dist = diff.norm();
+        if (dist > 0) {
+          normal = diff / dist;
+          overlap = w.radius[i] - dist;
+        } else {  // centre inside the box: push out through the nearest face
+          const Vec3 lo = xi - wall.a, hi = wall.b - xi;
+          Eigen::Index kl, kh;
+          const double dl = lo.minCoeff(&kl), dh = hi.minCoeff(&kh);
+          normal = Vec3::Zero();
+          if (dl < dh) normal[kl] = -1; else normal[kh] = 1;
+          overlap = w.radius[i] + std::min(dl, dh);
+        }
+      }
+      const bool involved = w.body[i] == w.record_body || wall.body == w.record_body;
+      const bool was = h.touching;
+      const Vec3 v_rel_c = w.v.col(i);
+      if (overlap <= 0) {
+        note_record(w, involved, overlap, was, false, -v_rel_c.dot(normal), Vec3::Zero());
+        h.touching = false;
+        h.spring.setZero();
+        continue;
+      }
+      w.max_overlap_ratio = std::max(w.max_overlap_ratio, overlap / w.radius[i]);
+      ContactGeometry g{.normal = normal,
+                        .overlap = overlap,
+                        .arm1 = -(w.radius[i] - 0.5 * overlap) * normal,
+                        .arm2 = Vec3::Zero(),
+                        .radius_eff = w.radius[i],
+                        .mass_eff = w.mass[i]};
+      const Vec3 v_rel = w.v.col(i) + w.w.col(i).cross(g.arm1);
+      const ContactOutcome c =
+          contact_force(w, g, w.pair[w.material[i] * nm + wall.material], v_rel, h.spring, dt);
+      w.force.col(i) += c.force;
+      w.torque.col(i) += g.arm1.cross(c.force);
+      w.contact_energy += c.energy;
+      w.dissipated += c.dissipated;
+      ++w.contact_updates;
+      h.touching = true;
+      const Vec3 on_record = w.body[i] == w.record_body ? c.force : Vec3(-c.force);
+      note_record(w, involved, overlap, was, true, c.rate, on_record);
+    }
+  }
+}
+
+}  // namespace
+
+void initialise(SphereWorld& world) {
+  const int n = world.size();
+  const int nm = static_cast<int>(world.materials.size());
+  world.pair.assign(nm * nm, {});
+  for (int a = 0; a < nm; ++a) {
+    for (int b = 0; b < nm; ++b) {
+      const Material &ma = world.materials[a], &mb = world.materials[b];
+      PairConstants& pc = world.pair[a * nm + b];
+      pc.young_eff = effective_young(ma, mb);
+      pc.shear_eff = effective_shear(ma, mb);
+      pc.friction = world.law.friction.value_or(pair_friction(ma, mb));
+      pc.zeta = contact::damping_for_restitution(
+          world.law.normal, world.law.restitution.value_or(pair_restitution(ma, mb)));
+    }
+  }
+  world.force = Eigen::Matrix3Xd::Zero(3, n);
+  world.torque = Eigen::Matrix3Xd::Zero(3, n);
+  world.orientation.assign(n, Quat::Identity());
+  double r_min = 1e300;
+  for (double r : world.radius) r_min = std::min(r_min, r);
+  // A skin of a fifth of the smallest radius: few rebuilds, few extra candidate pairs.
+  world.skin = n > 0 ? 0.2 * r_min : 0;
+  world.wall_contacts.assign(world.walls.size() * n, {});
+  world.x_initial = world.x;
+  rebuild_pairs(world);
+  compute_forces(world, 0.0);
+}
+
+void step(SphereWorld& world, double dt) {
+  const int n = world.size();
+  auto t0 = Clock::now();
+  for (int i = 0; i < n; ++i) {
+    if (world.fixed[i]) continue;
+    world.v.col(i) += 0.5 * dt * (world.force.col(i) / world.mass[i] + world.gravity);
+    world.w.col(i) += 0.5 * dt * world.torque.col(i) / world.inertia[i];
+    world.x.col(i) += dt * world.v.col(i);
+    const Vec3 spin = world.w.col(i) * dt;
+    if (const double angle = spin.norm(); angle > 0) {
+      world.orientation[i] = (Quat(Eigen::AngleAxisd(angle, spin / angle)) * world.orientation[i]).normalized();
+    }
+  }
+  world.profile.integrate += seconds_since(t0);
+
+  t0 = Clock::now();
+  if (needs_rebuild(world)) rebuild_pairs(world);
+  world.profile.broad_phase += seconds_since(t0);
+
+  t0 = Clock::now();
+  compute_forces(world, dt);
+  world.profile.contact += seconds_since(t0);
+
+  t0 = Clock::now();
+  for (int i = 0; i < n; ++i) {
+    if (world.fixed[i]) continue;
+    world.v.col(i) += 0.5 * dt * (world.force.col(i) / world.mass[i] + world.gravity);
+    world.w.col(i) += 0.5 * dt * world.torque.col(i) / world.inertia[i];
+  }
+  world.profile.integrate += seconds_since(t0);
+  world.time += dt;
+  ++world.steps;
+}
+
+EnergyTerms energy(const SphereWorld& world) {
+  EnergyTerms e;
+  for (int i = 0; i < world.size(); ++i) {
+    if (world.fixed[i]) continue;
+    e.kinetic += 0.5 * world.mass[i] * world.v.col(i).squaredNorm() +
+                 0.5 * world.inertia[i] * world.w.col(i).squaredNorm();
+    e.gravity -= world.mass[i] * world.gravity.dot(world.x.col(i) - world.x_initial.col(i));
+  }
+  e.contact = world.contact_energy;
+  e.dissipated = world.dissipated;
+  return e;
+}
+
+}  // namespace asperity::dem

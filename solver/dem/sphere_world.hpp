@@ -1,0 +1,122 @@
+// Rigid-sphere DEM world: spheres against spheres, planes and fixed boxes, plain arrays (SoA).
+#pragma once
+
+#include <cstdint>
+#include <optional>
+#include <vector>
+
+#include <Eigen/Core>
+
+#include "contact/restitution_damping.hpp"
+#include "core/material.hpp"
+#include "core/vec.hpp"
+
+namespace asperity::dem {
+
+enum class WallKind : std::uint8_t { plane, box };
+
+// A fixed wall. Plane: a = point, b = unit normal into the free side. Box: a = min, b = max.
+struct Wall {
+  WallKind kind = WallKind::plane;
+  Vec3 a = Vec3::Zero();
+  Vec3 b = Vec3::Zero();
+  int material = 0;
+  int body = -1;  // scene body index
+};
+
+struct LawDef {
+  contact::NormalLaw normal = contact::NormalLaw::hertz;
+  bool tangential = true;  // hertz-mindlin and linear carry a tangential spring; hertz does not
+  double kn = 0;           // linear only, N/m
+  double kt = 0;           // linear only, N/m
+  std::optional<double> friction;     // overrides the pair's
+  std::optional<double> restitution;  // overrides the pair's
+};
+
+// One sphere–sphere pair of the neighbour list, with its tangential history.
+struct PairContact {
+  int i = 0, j = 0;  // i < j
+  Vec3 spring = Vec3::Zero();
+  bool touching = false;
+};
+
+// One sphere–wall history slot (index wall * n_spheres + sphere).
+struct WallContact {
+  Vec3 spring = Vec3::Zero();
+  bool touching = false;
+};
+
+// Seconds spent in each phase of step(); summary.json reports it.
+struct Profile {
+  double broad_phase = 0;
+  double contact = 0;
+  double integrate = 0;
+};
+
+// Material-pair constants, computed once (index a * n_materials + b).
+struct PairConstants {
+  double young_eff = 0;
+  double shear_eff = 0;
+  double friction = 0;
+  double zeta = 0;  // damping realising the pair restitution
+};
+
+struct SphereWorld {
+  // Sphere state (columns are spheres).
+  Eigen::Matrix3Xd x, v, w;         // position m, velocity m/s, angular velocity rad/s
+  Eigen::Matrix3Xd force, torque;   // this step's totals, without gravity
+  std::vector<Quat> orientation;
+  std::vector<double> radius, mass, inertia;  // m, kg, kg·m² (2/5 m r²)
+  std::vector<int> material, body;            // material index, scene body index
+  std::vector<std::uint8_t> fixed;
+
+  std::vector<Material> materials;
+  std::vector<PairConstants> pair;
+  std::vector<Wall> walls;
+  Vec3 gravity = Vec3::Zero();
+  LawDef law;
+
+  // Broad phase: Verlet neighbour list, rebuilt when a sphere moved more than skin/2.
+  double skin = 0;
+  std::vector<PairContact> pairs;
+  Eigen::Matrix3Xd x_at_build;
+  long rebuilds = 0;
+  std::vector<WallContact> wall_contacts;
+
+  // Bookkeeping.
+  Eigen::Matrix3Xd x_initial;  // gravity potential is measured from here
+  double contact_energy = 0;   // J, at the current positions
+  double dissipated = 0;       // J, accumulated
+  long contact_updates = 0;    // pair evaluations with positive overlap, accumulated
+  double max_overlap_ratio = 0;  // largest overlap / smaller radius seen; > 1: passed through
+
+  // The recorded body (scene index): total contact force on it, and the largest signed overlap
+  // among its candidate contacts (negative: the smallest gap), to time contact start and end.
+  int record_body = -1;
+  Vec3 record_force = Vec3::Zero();
+  double record_overlap = -1e300;
+  double record_approach_speed = 0;  // relative normal speed at the first contact's start
+  double record_separation_speed = 0;
+  int record_contacts_started = 0, record_contacts_ended = 0;
+
+  double time = 0;
+  long steps = 0;
+  Profile profile;
+
+  int size() const { return static_cast<int>(radius.size()); }
+};
+
+// Sets derived constants, the neighbour list and the initial forces. Call once after filling
+// the sphere arrays, materials, walls and law.
+void initialise(SphereWorld& world);
+
+// One velocity-Verlet step: half kick, drift, broad phase, contact forces, half kick.
+void step(SphereWorld& world, double dt);
+
+struct EnergyTerms {
+  double kinetic = 0, contact = 0, gravity = 0, dissipated = 0;
+  double total() const { return kinetic + contact + gravity + dissipated; }
+};
+EnergyTerms energy(const SphereWorld& world);
+
+}  // namespace asperity::dem

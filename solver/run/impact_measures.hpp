@@ -1,0 +1,68 @@
+// Measures of the recorded body's force history, shared by every model's runner.
+#pragma once
+
+#include <algorithm>
+#include <cmath>
+
+#include "core/vec.hpp"
+
+namespace asperity::run {
+
+// Fed once per step with the recorded body's total contact force and its largest signed
+// overlap s (m; negative while apart). Contact starts and ends are placed by linear
+// interpolation of s between steps, so the duration is second-order accurate in dt rather than
+// rounded to whole steps.
+struct ImpactMeasures {
+  double peak_force = 0;       // N
+  double impulse = 0;          // ∫|F| dt, trapezoidal, N·s
+  double contact_duration = 0;  // s, time with s > 0
+  double first_contact_time = -1;  // s, -1: none
+  double max_overlap = 0;      // m
+  bool touching = false;
+
+  void start(double t, const Vec3& f, double s) {
+    t_prev_ = t;
+    f_prev_ = f.norm();
+    s_prev_ = s;
+    touching = s > 0;
+    if (touching) {
+      first_contact_time = t;
+      contact_start_ = t;
+    }
+    peak_force = f_prev_;
+  }
+
+  void add(double t, const Vec3& f, double s) {
+    const double fm = f.norm();
+    peak_force = std::max(peak_force, fm);
+    impulse += 0.5 * (fm + f_prev_) * (t - t_prev_);
+    if (s > 0) max_overlap = std::max(max_overlap, s);
+    if (!touching && s > 0) {
+      contact_start_ = crossing(t, s);
+      if (first_contact_time < 0) first_contact_time = contact_start_;
+      touching = true;
+    } else if (touching && s <= 0) {
+      contact_duration += crossing(t, s) - contact_start_;
+      touching = false;
+    }
+    t_prev_ = t;
+    f_prev_ = fm;
+    s_prev_ = s;
+  }
+
+  // Contact still open at the end counts up to `t_end`.
+  double duration_until(double t_end) const {
+    return contact_duration + (touching ? t_end - contact_start_ : 0.0);
+  }
+
+ private:
+  double crossing(double t, double s) const {
+    // s_prev is -huge when no candidate contact existed the step before: no interpolation.
+    if (!(s_prev_ > -1e200) || s == s_prev_) return t;
+    const double frac = -s_prev_ / (s - s_prev_);
+    return t_prev_ + std::clamp(frac, 0.0, 1.0) * (t - t_prev_);
+  }
+  double t_prev_ = 0, f_prev_ = 0, s_prev_ = -1e300, contact_start_ = 0;
+};
+
+}  // namespace asperity::run

@@ -1,0 +1,196 @@
+// Scene loading: every key validated once, here, at the edge (shared/CONTRACT.md, "Scene file").
+#include <cmath>
+#include <map>
+#include <set>
+
+#include "core/error.hpp"
+#include "io/json_file.hpp"
+#include "scene/scene.hpp"
+#include "scene/scene_json.hpp"
+
+namespace asperity::scene {
+namespace {
+
+using io::JsonReader;
+
+Material parse_material(const JsonReader& m, const std::string& name) {
+  m.only_keys({"density", "young", "poisson", "friction", "restitution"});
+  Material out;
+  out.name = name;
+  out.density = m.positive("density");
+  out.young = m.positive("young");
+  // Thermodynamic bounds of an isotropic solid: −1 < ν < 1/2.
+  out.poisson = m.in_range("poisson", -1.0, 0.5, true, true);
+  out.friction = m.has("friction") ? m.in_range("friction", 0.0, 1e3, false, false) : 0.0;
+  out.restitution = m.has("restitution") ? m.in_range("restitution", 0.0, 1.0, true, false) : 1.0;
+  return out;
+}
+
+Shape parse_shape(const JsonReader& s) {
+  s.require_object();
+  const std::string type = s.string("type");
+  if (type == "sphere") {
+    s.only_keys({"type", "radius"});
+    return SphereShape{.radius = s.positive("radius")};
+  }
+  if (type == "plane") {
+    s.only_keys({"type", "point", "normal"});
+    PlaneShape p{.point = s.vec3("point"), .normal = s.vec3("normal")};
+    if (p.normal.norm() < 1e-12) s.fail("normal", "must be a non-zero vector");
+    p.normal.normalize();
+    return p;
+  }
+  if (type == "box") {
+    s.only_keys({"type", "min", "max"});
+    BoxShape b{.min = s.vec3("min"), .max = s.vec3("max")};
+    if (!(b.max.array() > b.min.array()).all()) s.fail("max", "must exceed min in every axis");
+    return b;
+  }
+  if (type == "mesh") {
+    s.only_keys({"type", "file", "faces", "scale"});
+    MeshShape m;
+    m.file = s.string("file");
+    if (m.file.is_relative()) m.file = s.file().parent_path() / m.file;
+    m.faces = s.has("faces") ? static_cast<int>(s.integer("faces", 4, 10'000'000)) : 0;
+    m.scale = s.has("scale") ? s.positive("scale") : 1.0;
+    return m;
+  }
+  const std::string near = io::closest_key(type, {"sphere", "plane", "box", "mesh"});
+  s.fail("type", "unknown shape \"" + type + "\"" +
+                     (near.empty() ? "" : " (did you mean \"" + near + "\"?)") +
+                     "; expected sphere, plane, box or mesh");
+}
+
+ContactDef parse_contact(const JsonReader& c) {
+  c.only_keys({"law", "kn", "kt", "penalty", "friction", "restitution"});
+  ContactDef out;
+  const std::string law = c.string("law");
+  if (law == "hertz") {
+    out.law = ContactLaw::hertz;
+  } else if (law == "hertz-mindlin") {
+    out.law = ContactLaw::hertz_mindlin;
+  } else if (law == "linear") {
+    out.law = ContactLaw::linear;
+    out.kn = c.positive("kn");
+  } else if (law == "potential") {
+    out.law = ContactLaw::potential;
+  } else {
+    const std::string near = io::closest_key(law, {"hertz", "hertz-mindlin", "linear", "potential"});
+    c.fail("law", "unknown contact law \"" + law + "\"" +
+                      (near.empty() ? "" : " (did you mean \"" + near + "\"?)") +
+                      "; expected hertz, hertz-mindlin, linear or potential");
+  }
+  if (c.has("kn") && !out.kn) c.fail("kn", "only the linear law takes kn");
+  if (c.has("kt")) {
+    if (out.law != ContactLaw::linear) c.fail("kt", "only the linear law takes kt");
+    out.kt = c.positive("kt");
+  }
+  if (c.has("penalty")) {
+    if (out.law != ContactLaw::potential) c.fail("penalty", "only the potential law takes penalty");
+    out.penalty = c.positive("penalty");
+  }
+  if (c.has("friction")) out.friction = c.in_range("friction", 0.0, 1e3, false, false);
+  if (c.has("restitution")) out.restitution = c.in_range("restitution", 0.0, 1.0, true, false);
+  return out;
+}
+
+}  // namespace
+
+SceneDef parse_scene(const io::Json& json, const std::filesystem::path& file,
+                     const std::string& prefix) {
+  const JsonReader r(json, file, prefix);
+  r.only_keys({"name", "gravity", "duration", "dt", "dt_safety", "allow_unsafe_dt",
+               "unstable_energy_growth", "materials", "bodies", "contact", "record"});
+  SceneDef s;
+  s.file = file;
+  s.name = r.has("name") ? r.string("name") : file.stem().string();
+  s.gravity = r.vec3_or("gravity", Vec3::Zero());
+  s.duration = r.positive("duration");
+  if (r.has("dt")) {
+    const auto& dt = r.value().at("dt");
+    if (dt.is_string()) {
+      if (dt.get<std::string>() != "auto") r.fail("dt", "must be a number or \"auto\" (got " + dt.dump() + ")");
+    } else {
+      s.dt = r.positive("dt");
+    }
+  }
+  // A safety factor above 1 is past the predicted limit by construction.
+  s.dt_safety = r.has("dt_safety") ? r.in_range("dt_safety", 0.0, 1.0, true, false) : s.dt_safety;
+  s.allow_unsafe_dt = r.boolean_or("allow_unsafe_dt", false);
+  if (r.has("unstable_energy_growth")) s.unstable_energy_growth = r.positive("unstable_energy_growth");
+
+  const JsonReader mats = r.child("materials");
+  mats.require_object();
+  if (mats.value().empty()) mats.fail("", "must define at least one material");
+  std::map<std::string, int> material_index;
+  for (const auto& [name, m] : mats.value().items()) {
+    material_index[name] = static_cast<int>(s.materials.size());
+    s.materials.push_back(parse_material(JsonReader(m, file, mats.path() + "." + name), name));
+  }
+
+  const JsonReader bodies = r.child("bodies");
+  const std::size_t n = bodies.require_array();
+  if (n == 0) bodies.fail("", "must list at least one body");
+  std::set<std::string> names;
+  for (std::size_t i = 0; i < n; ++i) {
+    const JsonReader b = bodies.at(i);
+    b.only_keys({"name", "material", "shape", "model", "position", "velocity", "angular_velocity",
+                 "fixed"});
+    BodyDef body;
+    body.name = b.string("name");
+    if (!names.insert(body.name).second) b.fail("name", "duplicate body name \"" + body.name + "\"");
+    const std::string mat = b.string("material");
+    auto it = material_index.find(mat);
+    if (it == material_index.end()) b.fail("material", "no material named \"" + mat + "\"");
+    body.material = it->second;
+    body.shape = parse_shape(b.child("shape"));
+    if (b.has("model")) {
+      const std::string model = b.string("model");
+      if (model == "rigid") {
+        body.model = Model::rigid;
+      } else if (model == "fem") {
+        body.model = Model::fem;
+      } else {
+        b.fail("model", "must be \"rigid\" or \"fem\" (got \"" + model + "\")");
+      }
+    }
+    body.position = b.vec3_or("position", Vec3::Zero());
+    body.velocity = b.vec3_or("velocity", Vec3::Zero());
+    body.angular_velocity = b.vec3_or("angular_velocity", Vec3::Zero());
+    const bool is_wall = std::holds_alternative<PlaneShape>(body.shape) ||
+                         std::holds_alternative<BoxShape>(body.shape);
+    body.fixed = b.boolean_or("fixed", is_wall);
+    if (is_wall && !body.fixed) b.fail("fixed", "planes and boxes are fixed bodies; use a mesh body for a moving block");
+    if (is_wall && body.model == Model::fem) b.fail("model", "planes and boxes are rigid; use a mesh body for a deformable block");
+    if (std::holds_alternative<SphereShape>(body.shape) && body.model == Model::fem) {
+      b.fail("model", "a sphere is rigid here; mesh it (shape \"mesh\") to make it deformable");
+    }
+    s.bodies.push_back(std::move(body));
+  }
+
+  if (r.has("contact")) s.contact = parse_contact(r.child("contact"));
+
+  if (r.has("record")) {
+    const JsonReader rec = r.child("record");
+    rec.only_keys({"force_on", "every"});
+    const std::string who = rec.string("force_on");
+    s.record.body = -1;
+    for (std::size_t i = 0; i < s.bodies.size(); ++i) {
+      if (s.bodies[i].name == who) s.record.body = static_cast<int>(i);
+    }
+    if (s.record.body < 0) rec.fail("force_on", "no body named \"" + who + "\"");
+    if (rec.has("every")) s.record.every = static_cast<int>(rec.integer("every", 1, 1'000'000'000));
+  } else {
+    for (std::size_t i = 0; i < s.bodies.size() && s.record.body < 0; ++i) {
+      if (!s.bodies[i].fixed) s.record.body = static_cast<int>(i);
+    }
+    if (s.record.body < 0) s.record.body = 0;
+  }
+  return s;
+}
+
+SceneDef load_scene(const std::filesystem::path& file) {
+  return parse_scene(io::read_json_file(file), file, "");
+}
+
+}  // namespace asperity::scene

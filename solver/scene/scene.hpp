@@ -1,0 +1,80 @@
+// A scene as the contract defines it (shared/CONTRACT.md): plain definition structs, SI units.
+#pragma once
+
+#include <filesystem>
+#include <optional>
+#include <string>
+#include <variant>
+#include <vector>
+
+#include "core/material.hpp"
+#include "core/vec.hpp"
+
+namespace asperity::scene {
+
+struct SphereShape {
+  double radius = 0;  // m
+};
+struct PlaneShape {
+  Vec3 point = Vec3::Zero();
+  Vec3 normal = Vec3::UnitZ();  // unit, pointing into the free half-space
+};
+struct BoxShape {
+  Vec3 min = Vec3::Zero();
+  Vec3 max = Vec3::Zero();
+};
+struct MeshShape {
+  std::filesystem::path file;  // resolved against the scene file's folder
+  int faces = 0;               // 0: keep the file's triangles
+  double scale = 1;            // multiplies the file's coordinates (e.g. 1e-3 for mm)
+};
+using Shape = std::variant<SphereShape, PlaneShape, BoxShape, MeshShape>;
+
+enum class Model { rigid, fem };
+
+struct BodyDef {
+  std::string name;
+  int material = -1;  // index into SceneDef::materials
+  Shape shape;
+  Model model = Model::rigid;
+  Vec3 position = Vec3::Zero();
+  Vec3 velocity = Vec3::Zero();
+  Vec3 angular_velocity = Vec3::Zero();
+  bool fixed = false;
+};
+
+enum class ContactLaw { hertz, hertz_mindlin, linear, potential };
+
+struct ContactDef {
+  ContactLaw law = ContactLaw::hertz_mindlin;
+  std::optional<double> kn;           // linear: normal stiffness, N/m
+  std::optional<double> kt;           // linear: tangential stiffness, N/m (default 2/7 kn)
+  std::optional<double> penalty;      // potential: penalty, Pa (default α·E)
+  std::optional<double> friction;     // overrides the materials' pair friction
+  std::optional<double> restitution;  // overrides the materials' pair restitution
+};
+
+struct RecordDef {
+  int body = -1;  // index into SceneDef::bodies
+  int every = 1;  // steps between rows of force.csv and energy.csv
+};
+
+struct SceneDef {
+  std::filesystem::path file;  // where it was read from (for messages)
+  std::string name;
+  Vec3 gravity = Vec3::Zero();
+  double duration = 0;
+  std::optional<double> dt;  // empty: "auto"
+  double dt_safety = 0.1;
+  bool allow_unsafe_dt = false;  // run a given dt above the predicted critical step
+  double unstable_energy_growth = 0.5;  // energy_drift beyond this stops the run as unstable
+  std::vector<Material> materials;
+  std::vector<BodyDef> bodies;
+  ContactDef contact;
+  RecordDef record;
+};
+
+// Reads and validates a scene file. Throws InputError naming file, key and problem.
+SceneDef load_scene(const std::filesystem::path& file);
+
+}  // namespace asperity::scene

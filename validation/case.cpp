@@ -1,0 +1,199 @@
+// Validation cases: loading, analytic references, running and checking.
+#include "case.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <numbers>
+
+#include "contact/hertz_impact.hpp"
+#include "core/error.hpp"
+#include "io/json_file.hpp"
+#include "scene/scene_json.hpp"
+
+namespace asperity::validation {
+namespace {
+
+using io::JsonReader;
+
+// The analytic elastic Hertz impact of a two-body scene: a sphere against a sphere, plane or box,
+// no gravity. v is the relative approach speed along the line of centres (or the wall normal).
+contact::HertzImpact hertz_reference(const scene::SceneDef& s, const JsonReader& where) {
+  if (s.bodies.size() != 2) where.fail("reference", "\"hertz\" needs a scene of exactly two bodies");
+  if (s.gravity.norm() != 0) where.fail("reference", "\"hertz\" needs a scene without gravity");
+  const scene::BodyDef *a = &s.bodies[0], *b = &s.bodies[1];
+  if (!std::holds_alternative<scene::SphereShape>(a->shape)) std::swap(a, b);
+  const auto* sa = std::get_if<scene::SphereShape>(&a->shape);
+  if (!sa) where.fail("reference", "\"hertz\" needs at least one sphere");
+  const Material &ma = s.materials[a->material], &mb = s.materials[b->material];
+  const double mass_a = ma.density * 4.0 / 3.0 * std::numbers::pi * std::pow(sa->radius, 3);
+  double r_eff = sa->radius, m_eff = mass_a, v = 0;
+  if (const auto* sb = std::get_if<scene::SphereShape>(&b->shape)) {
+    const double mass_b = mb.density * 4.0 / 3.0 * std::numbers::pi * std::pow(sb->radius, 3);
+    r_eff = sa->radius * sb->radius / (sa->radius + sb->radius);
+    if (!b->fixed) m_eff = mass_a * mass_b / (mass_a + mass_b);
+    const Vec3 n = (a->position - b->position).normalized();
+    v = -(a->velocity - (b->fixed ? Vec3::Zero() : b->velocity)).dot(n);
+  } else if (const auto* pl = std::get_if<scene::PlaneShape>(&b->shape)) {
+    v = -a->velocity.dot(pl->normal);
+  } else if (const auto* bx = std::get_if<scene::BoxShape>(&b->shape)) {
+    const Vec3 c = a->position.cwiseMax(bx->min).cwiseMin(bx->max);
+    v = -a->velocity.dot((a->position - c).normalized());
+  } else {
+    where.fail("reference", "\"hertz\" needs a sphere against a sphere, plane or box");
+  }
+  if (!(v > 0)) where.fail("reference", "\"hertz\" needs the bodies approaching");
+  return contact::hertz_impact(m_eff, r_eff, effective_young(ma, mb), v);
+}
+
+double target_restitution(const scene::SceneDef& s) {
+  if (s.contact.restitution) return *s.contact.restitution;
+  double e = 1;
+  for (const scene::BodyDef& b : s.bodies) e = std::min(e, s.materials[b.material].restitution);
+  return e;
+}
+
+std::optional<double> summary_number(const nlohmann::ordered_json& summary, const std::string& key) {
+  auto it = summary.find(key);
+  if (it == summary.end() || !it->is_number()) return std::nullopt;
+  return it->get<double>();
+}
+
+}  // namespace
+
+CaseDef load_case(const std::filesystem::path& file) {
+  const io::Json json = io::read_json_file(file);
+  const JsonReader r(json, file, "");
+  r.only_keys({"case", "description", "tags", "source", "scene", "expected"});
+  CaseDef c;
+  c.file = file;
+  c.name = r.string("case");
+  c.description = r.has("description") ? r.string("description") : "";
+  if (r.has("tags")) {
+    const JsonReader t = r.child("tags");
+    for (std::size_t i = 0; i < t.require_array(); ++i) c.tags.push_back(t.at(i).value().get<std::string>());
+  }
+  r.child("scene").require_object();
+  c.scene = scene::parse_scene(json.at("scene"), file, "scene");
+
+  const JsonReader ex = r.child("expected");
+  ex.require_object();
+  std::optional<contact::HertzImpact> hertz;
+  for (const auto& [quantity, spec] : ex.value().items()) {
+    const JsonReader e(spec, file, "expected." + quantity);
+    Check ch;
+    ch.quantity = quantity;
+    if (spec.is_string()) {  // e.g. "status": "ok"
+      ch.reference = "equals";
+      ch.text = spec.get<std::string>();
+      c.checks.push_back(ch);
+      continue;
+    }
+    e.only_keys({"reference", "value", "rel_tol", "abs_tol", "max", "min", "why"});
+    ch.why = e.string("why");
+    if (e.has("max")) {
+      ch.reference = "max";
+      ch.expected = e.number("max");
+    } else if (e.has("min")) {
+      ch.reference = "min";
+      ch.expected = e.number("min");
+    } else if (e.has("value")) {
+      ch.reference = "value";
+      ch.expected = e.number("value");
+    } else {
+      ch.reference = e.string("reference");
+      if (ch.reference == "hertz") {
+        if (!hertz) hertz = hertz_reference(c.scene, e);
+        if (quantity == "peak_force") ch.expected = hertz->peak_force;
+        else if (quantity == "max_overlap") ch.expected = hertz->max_overlap;
+        else if (quantity == "contact_duration") ch.expected = hertz->contact_duration;
+        else if (quantity == "impulse") ch.expected = hertz->impulse;
+        else e.fail("reference", "\"hertz\" gives peak_force, max_overlap, contact_duration or impulse");
+      } else if (ch.reference == "target_restitution") {
+        ch.expected = target_restitution(c.scene);
+      } else {
+        e.fail("reference", "unknown reference \"" + ch.reference +
+                                "\"; expected hertz, target_restitution, or a value/max/min");
+      }
+    }
+    if (ch.reference != "max" && ch.reference != "min") {
+      if (!e.has("rel_tol") && !e.has("abs_tol")) e.fail("", "needs rel_tol or abs_tol");
+      ch.rel_tol = e.number_or("rel_tol", 0);
+      ch.abs_tol = e.number_or("abs_tol", 0);
+    }
+    c.checks.push_back(ch);
+  }
+  if (c.checks.empty()) ex.fail("", "a case must expect at least one value");
+  return c;
+}
+
+std::vector<std::filesystem::path> find_cases(const std::filesystem::path& path) {
+  std::vector<std::filesystem::path> out;
+  if (std::filesystem::is_regular_file(path)) return {path};
+  if (!std::filesystem::is_directory(path)) throw InputError(path.string() + ": no such case file or folder");
+  for (const auto& e : std::filesystem::recursive_directory_iterator(path)) {
+    if (e.is_regular_file() && e.path().extension() == ".json") out.push_back(e.path());
+  }
+  std::sort(out.begin(), out.end());
+  if (out.empty()) throw InputError(path.string() + ": no case files (*.json) found");
+  return out;
+}
+
+CaseResult run_case(const CaseDef& def) {
+  CaseResult r;
+  r.def = def;
+  r.run = run::run_scene(def.scene);
+  r.passed = true;
+  for (const Check& ch : def.checks) {
+    CheckResult cr;
+    cr.check = ch;
+    if (ch.reference == "equals") {
+      auto it = r.run.summary.find(ch.quantity);
+      cr.got_text = it == r.run.summary.end() ? "(missing)" : (it->is_string() ? it->get<std::string>() : it->dump());
+      cr.passed = cr.got_text == ch.text;
+    } else if (auto got = summary_number(r.run.summary, ch.quantity)) {
+      cr.got = *got;
+      if (ch.reference == "max") cr.passed = cr.got <= ch.expected;
+      else if (ch.reference == "min") cr.passed = cr.got >= ch.expected;
+      else cr.passed = std::abs(cr.got - ch.expected) <= ch.rel_tol * std::abs(ch.expected) + ch.abs_tol;
+    } else {
+      cr.got = std::nan("");
+      cr.got_text = "(missing)";
+      cr.passed = false;
+    }
+    r.passed = r.passed && cr.passed;
+    r.checks.push_back(cr);
+  }
+  return r;
+}
+
+nlohmann::ordered_json to_json(const CaseResult& r) {
+  nlohmann::ordered_json j;
+  j["case"] = r.def.name;
+  j["file"] = r.def.file.string();
+  j["passed"] = r.passed;
+  j["status"] = r.run.status;
+  for (const CheckResult& c : r.checks) {
+    nlohmann::ordered_json k;
+    k["quantity"] = c.check.quantity;
+    k["reference"] = c.check.reference;
+    if (c.check.reference == "equals") {
+      k["expected"] = c.check.text;
+      k["got"] = c.got_text;
+    } else {
+      k["expected"] = c.check.expected;
+      k["got"] = std::isfinite(c.got) ? nlohmann::ordered_json(c.got) : nlohmann::ordered_json();
+      if (c.check.reference != "max" && c.check.reference != "min") {
+        k["rel_error"] = c.check.expected != 0 ? (c.got - c.check.expected) / std::abs(c.check.expected)
+                                               : c.got - c.check.expected;
+        k["rel_tol"] = c.check.rel_tol;
+        k["abs_tol"] = c.check.abs_tol;
+      }
+    }
+    k["passed"] = c.passed;
+    k["why"] = c.check.why;
+    j["checks"].push_back(k);
+  }
+  return j;
+}
+
+}  // namespace asperity::validation

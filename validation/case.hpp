@@ -1,0 +1,60 @@
+// A validation case: one scene plus expected values with tolerances and their reasons.
+// The same file feeds the ctest gate, the validation report and the YADE cross-check.
+#pragma once
+
+#include <filesystem>
+#include <string>
+#include <vector>
+
+#include <nlohmann/json.hpp>
+
+#include "run/run_scene.hpp"
+#include "scene/scene.hpp"
+
+namespace asperity::validation {
+
+// One expectation on a summary.json quantity.
+struct Check {
+  std::string quantity;   // a summary.json key, e.g. "peak_force"
+  std::string reference;  // "value", "hertz", "target_restitution", "max", "min", "equals"
+  double expected = 0;    // resolved reference value
+  double rel_tol = 0;     // |got − expected| ≤ rel_tol·|expected| + abs_tol
+  double abs_tol = 0;
+  std::string why;        // the tolerance's reason (and the reference's source)
+  std::string text;       // for "equals" (status)
+};
+
+struct CaseDef {
+  std::filesystem::path file;
+  std::string name;
+  std::string description;
+  std::vector<std::string> tags;
+  scene::SceneDef scene;
+  std::vector<Check> checks;
+};
+
+struct CheckResult {
+  Check check;
+  double got = 0;
+  std::string got_text;
+  bool passed = false;
+};
+
+struct CaseResult {
+  CaseDef def;
+  run::RunResult run;
+  std::vector<CheckResult> checks;
+  bool passed = false;
+};
+
+// Reads a case; resolves analytic references from its scene. Throws InputError.
+CaseDef load_case(const std::filesystem::path& file);
+
+// Case files under a path (a file, or a folder searched recursively), sorted.
+std::vector<std::filesystem::path> find_cases(const std::filesystem::path& path);
+
+CaseResult run_case(const CaseDef& def);
+
+nlohmann::ordered_json to_json(const CaseResult& r);
+
+}  // namespace asperity::validation
