@@ -1,0 +1,16 @@
+// One file per command: each registers its CLI11 subcommand and the action that runs it.
+#pragma once
+
+#include <functional>
+
+#include <CLI/CLI.hpp>
+
+namespace asperity::app {
+
+// The action returns the process exit code (core/error.hpp); it may throw InputError (exit 2).
+using Action = std::function<int()>;
+
+void add_run_command(CLI::App& app, Action& action);
+void add_validate_command(CLI::App& app, Action& action);
+
+}  // namespace asperity::app
