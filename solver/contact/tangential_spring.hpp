@@ -3,6 +3,7 @@
 // the linear law.
 #pragma once
 
+#include <algorithm>
 #include <cmath>
 
 #include "core/vec.hpp"
@@ -25,30 +26,29 @@ struct TangentialForce {
 
 // spring: the previous spring force already rotated into the current tangent plane.
 // slip_velocity: tangential velocity of body 1 relative to body 2 at the contact point, m/s.
-// Incremental law F_s ← F_s − k_t v_t dt; if |F_s + F_d| > μ F_n the total is scaled to μ F_n,
-// the spring keeps the capped force. Dissipation is the work the relative motion did on the contact
-// minus the change of stored spring energy, so the energy balance closes by construction.
+// Incremental law F_s ← F_s − k_t v_t dt. Sticking (|F_s + F_d| ≤ μ F_n) the force is spring plus
+// dashpot; the dashpot dissipates −F_d·v_t dt and the spring none (its path is linear, so the
+// trapezoidal work equals its energy change exactly). Sliding, the total is μ F_n along the trial
+// force, carried by the spring alone, and the work of sliding is μ F_n times the slip length
+// (|F_s,trial| − μ F_n)/k_t: the usual plastic-slip split of the trial displacement.
 inline TangentialForce tangential_spring(const Vec3& spring, const Vec3& slip_velocity, double dt,
                                          double normal_force, const TangentialParams& p) {
   TangentialForce out;
-  Vec3 fs = spring - p.stiffness * dt * slip_velocity;
+  const Vec3 trial = spring - p.stiffness * dt * slip_velocity;
   const Vec3 fd = -p.damping * slip_velocity;
   const double cap = p.friction * normal_force;
-  const double trial = (fs + fd).norm();
-  if (trial > cap) {
-    // Coulomb: total force of magnitude μ F_n, spring kept equal to it (no viscous part in slip).
+  const double total = (trial + fd).norm();
+  if (total > cap) {
     out.sliding = true;
-    const Vec3 dir = trial > 0 ? Vec3((fs + fd) / trial) : Vec3::Zero();
-    const Vec3 capped = cap * dir;
-    fs = capped;
-    out.force = capped;
+    out.spring = total > 0 ? Vec3(cap / total * (trial + fd)) : Vec3::Zero();
+    out.force = out.spring;
+    if (p.stiffness > 0) out.dissipated = cap * std::max(0.0, trial.norm() - cap) / p.stiffness;
   } else {
-    out.force = fs + fd;
+    out.spring = trial;
+    out.force = trial + fd;
+    out.dissipated = -fd.dot(slip_velocity) * dt;
   }
-  out.spring = fs;
-  const double inv2k = p.stiffness > 0 ? 1.0 / (2 * p.stiffness) : 0;
-  out.energy = fs.squaredNorm() * inv2k;
-  out.dissipated = -out.force.dot(slip_velocity) * dt - (out.energy - spring.squaredNorm() * inv2k);
+  out.energy = p.stiffness > 0 ? out.spring.squaredNorm() / (2 * p.stiffness) : 0;
   return out;
 }
 

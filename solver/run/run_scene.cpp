@@ -15,6 +15,7 @@
 #include "dem/sphere_world.hpp"
 #include "dem/time_step.hpp"
 #include "run/impact_measures.hpp"
+#include "run/rebound.hpp"
 
 namespace asperity::run {
 namespace {
@@ -212,7 +213,8 @@ RunResult run_scene(const scene::SceneDef& s, const RunOptions& options) {
       if (el - last_progress > 1.0) {
         last_progress = el;
         std::fprintf(stderr, "\r%s: %5.1f%%  step %ld/%ld  %.0f s left ", s.name.c_str(),
-                     100.0 * k / n_steps, k, n_steps, el * (n_steps - k) / k);
+                     100.0 * static_cast<double>(k) / static_cast<double>(n_steps), k, n_steps,
+                     el * static_cast<double>(n_steps - k) / static_cast<double>(k));
       }
     }
   }
@@ -244,6 +246,26 @@ RunResult run_scene(const scene::SceneDef& s, const RunOptions& options) {
                          ? nlohmann::ordered_json(w.record_separation_speed / w.record_approach_speed)
                          : nlohmann::ordered_json();
   j["energy_drift"] = drift;
+  // Oblique-impact rebound of the recorded sphere (run/rebound.hpp; Chung & Ooi tests 4–8).
+  if (const std::optional<FirstImpact> impact = first_impact(s)) {
+    auto motion = [&](int body) {
+      BodyMotion m;
+      for (int i = 0; i < w.size(); ++i) {
+        if (w.body[i] == body) m = {.v = w.v.col(i), .w = w.w.col(i)};
+      }
+      return m;
+    };
+    add_rebound_measures(s, *impact, motion(s.record.body), motion(impact->partner),
+                         w.record_contacts_ended > 0, j);
+  }
+  // The recorded sphere's final state (rebound and rolling checks); absent for a wall.
+  for (int i = 0; i < w.size(); ++i) {
+    if (w.body[i] != s.record.body) continue;
+    const Vec3 v = w.v.col(i), om = w.w.col(i);
+    j["final_velocity"] = {v.x(), v.y(), v.z()};
+    j["final_speed"] = v.norm();
+    j["final_angular_velocity"] = {om.x(), om.y(), om.z()};
+  }
   j["dt"] = dt;
   j["dt_critical_predicted"] = crit.critical;
   j["dt_rayleigh"] = crit.rayleigh;

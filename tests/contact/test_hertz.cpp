@@ -1,0 +1,50 @@
+// Hertz normal law and the closed-form impact against their formulas (Johnson 1985).
+#include <cmath>
+
+#include <gtest/gtest.h>
+
+#include "contact/hertz.hpp"
+#include "contact/hertz_impact.hpp"
+
+using namespace asperity::contact;
+
+TEST(Hertz, ElasticForceStiffnessAndEnergyMatchTheFormula) {
+  const HertzParams p{.young_eff = 3.0e10, .radius_eff = 0.005, .mass_eff = 0.01, .zeta = 0};
+  const double d = 2e-5;
+  const NormalForce f = hertz_normal(d, 0.0, p);
+  const double k = 4.0 / 3.0 * 3.0e10 * std::sqrt(0.005);
+  // Round-off only: the same products in another order.
+  EXPECT_NEAR(f.force, k * std::pow(d, 1.5), 1e-12 * f.force);
+  EXPECT_NEAR(f.stiffness, 1.5 * k * std::sqrt(d), 1e-12 * f.stiffness);
+  EXPECT_NEAR(f.energy, 0.4 * k * std::pow(d, 2.5), 1e-12 * f.energy);
+  // dU/dδ = F and dF/dδ = S: central differences, truncation error O(h²) ~ 1e-8 relative.
+  const double h = 1e-9;
+  const double dU = (hertz_normal(d + h, 0, p).energy - hertz_normal(d - h, 0, p).energy) / (2 * h);
+  const double dF = (hertz_normal(d + h, 0, p).force - hertz_normal(d - h, 0, p).force) / (2 * h);
+  EXPECT_NEAR(dU, f.force, 1e-6 * f.force);
+  EXPECT_NEAR(dF, f.stiffness, 1e-6 * f.stiffness);
+}
+
+TEST(Hertz, DampedForceIsClippedAtZeroWhileSeparating) {
+  const HertzParams p{.young_eff = 3.0e10, .radius_eff = 0.005, .mass_eff = 0.01, .zeta = 1.0};
+  const NormalForce f = hertz_normal(1e-7, -5.0, p);  // tiny overlap, fast separation
+  EXPECT_LT(f.elastic + f.damping, 0.0);
+  EXPECT_EQ(f.force, 0.0);  // no cohesion: the law never pulls
+}
+
+TEST(HertzImpact, EnergyBalanceAtPeakOverlap) {
+  // At δ_max the approach kinetic energy ½ m* v² is all stored: 8/15 E* √R* δ_max^{5/2}.
+  const double m = 0.0052, r = 0.005, e = 3.3e10, v = 1.0;
+  const HertzImpact h = hertz_impact(m, r, e, v);
+  const double stored = 8.0 / 15.0 * e * std::sqrt(r) * std::pow(h.max_overlap, 2.5);
+  EXPECT_NEAR(stored, 0.5 * m * v * v, 1e-12 * stored);
+  // Duration scales as v^{-1/5} (Johnson 1985, eq. 11.24).
+  const HertzImpact h10 = hertz_impact(m, r, e, 10 * v);
+  EXPECT_NEAR(h10.contact_duration / h.contact_duration, std::pow(10.0, -0.2), 1e-12);
+}
+
+TEST(HertzImpact, DurationFactorIsTheBetaFunctionIntegral) {
+  // 2∫₀¹ (1 − x^{5/2})^{-1/2} dx = (4/5) B(2/5, 1/2), evaluated through lgamma.
+  const double beta = std::exp(std::lgamma(0.4) + std::lgamma(0.5) - std::lgamma(0.9));
+  EXPECT_NEAR(kHertzDurationFactor, 0.8 * beta, 1e-10);
+}

@@ -1,0 +1,128 @@
+// Bad input is refused at the edge with one line naming the file, the key and the problem.
+#include <filesystem>
+#include <fstream>
+#include <regex>
+#include <string>
+
+#include <gtest/gtest.h>
+
+#include "core/error.hpp"
+#include "io/json_file.hpp"
+#include "run/run_scene.hpp"
+#include "scene/scene.hpp"
+
+using namespace asperity;
+namespace fs = std::filesystem;
+
+namespace {
+
+const char* kGood = R"({
+  "name": "drop", "gravity": [0, 0, -9.81], "duration": 0.01, "dt": "auto",
+  "materials": {"glass": {"density": 2500, "young": 6.3e10, "poisson": 0.23,
+                          "friction": 0.3, "restitution": 0.9}},
+  "bodies": [
+    {"name": "ball", "material": "glass", "shape": {"type": "sphere", "radius": 0.01},
+     "position": [0, 0, 0.02], "velocity": [0, 0, -1]},
+    {"name": "floor", "material": "glass",
+     "shape": {"type": "plane", "point": [0, 0, 0], "normal": [0, 0, 1]}}
+  ],
+  "contact": {"law": "hertz-mindlin"},
+  "record": {"force_on": "ball", "every": 10}
+})";
+
+fs::path write_scene(const std::string& name, const std::string& text) {
+  const fs::path dir = fs::temp_directory_path() / "asperity_scene_tests";
+  fs::create_directories(dir);
+  const fs::path file = dir / (name + ".json");
+  std::ofstream(file) << text;
+  return file;
+}
+
+// Edits the good scene: replaces the first occurrence of `from` by `to`.
+std::string edit(const std::string& from, const std::string& to) {
+  std::string s = kGood;
+  const auto at = s.find(from);
+  EXPECT_NE(at, std::string::npos) << from;
+  return s.replace(at, from.size(), to);
+}
+
+// The error message of loading (and building) a scene, or "" if it loads.
+std::string error_of(const std::string& name, const std::string& text) {
+  const fs::path file = write_scene(name, text);
+  try {
+    run::run_scene(scene::load_scene(file), {.keep_rows = false});
+  } catch (const InputError& e) {
+    const std::string msg = e.what();
+    EXPECT_EQ(msg.find('\n'), std::string::npos) << "one line: " << msg;
+    EXPECT_EQ(msg.rfind(file.string(), 0), 0u) << "names the file first: " << msg;
+    return msg;
+  }
+  return "";
+}
+
+}  // namespace
+
+TEST(LoadScene, TheGoodSceneLoadsAndRuns) { EXPECT_EQ(error_of("good", kGood), ""); }
+
+TEST(LoadScene, SyntaxErrorGivesLineAndColumn) {
+  const std::string msg = error_of("syntax", "{\n  \"name\": \"x\",\n  \"duration\" 0.1\n}");
+  EXPECT_NE(msg.find("syntax.json:3:"), std::string::npos) << msg;
+}
+
+TEST(LoadScene, MissingKeyIsNamed) {
+  const std::string msg = error_of("missing", edit("\"duration\": 0.01, ", ""));
+  EXPECT_NE(msg.find("duration: missing required key"), std::string::npos) << msg;
+}
+
+TEST(LoadScene, UnknownKeyGetsASuggestion) {
+  const std::string msg = error_of("typo", edit("\"gravity\"", "\"gravty\""));
+  EXPECT_NE(msg.find("gravty: unknown key (did you mean \"gravity\"?)"), std::string::npos) << msg;
+}
+
+TEST(LoadScene, NegativeRadiusIsRefused) {
+  const std::string msg = error_of("radius", edit("\"radius\": 0.01", "\"radius\": -0.01"));
+  EXPECT_NE(msg.find("bodies[0].shape.radius: must be > 0 (got -0.01)"), std::string::npos) << msg;
+}
+
+TEST(LoadScene, NegativeDensityIsRefused) {
+  const std::string msg = error_of("density", edit("\"density\": 2500", "\"density\": -2500"));
+  EXPECT_NE(msg.find("materials.glass.density: must be > 0"), std::string::npos) << msg;
+}
+
+TEST(LoadScene, PoissonOutsideItsRangeIsRefused) {
+  const std::string msg = error_of("poisson", edit("\"poisson\": 0.23", "\"poisson\": 0.5"));
+  EXPECT_NE(msg.find("poisson: must lie in (-1, 0.5)"), std::string::npos) << msg;
+}
+
+TEST(LoadScene, RestitutionOutsideItsRangeIsRefused) {
+  EXPECT_NE(error_of("e0", edit("\"restitution\": 0.9", "\"restitution\": 0")).find("restitution: must lie in (0, 1]"),
+            std::string::npos);
+  EXPECT_NE(error_of("e2", edit("\"restitution\": 0.9", "\"restitution\": 1.5")).find("restitution: must lie in (0, 1]"),
+            std::string::npos);
+}
+
+TEST(LoadScene, UnknownMaterialAndRecordedBodyAreNamed) {
+  EXPECT_NE(error_of("mat", edit("\"material\": \"glass\"", "\"material\": \"gold\"")).find("no material named \"gold\""),
+            std::string::npos);
+  EXPECT_NE(error_of("rec", edit("\"force_on\": \"ball\"", "\"force_on\": \"bal\"")).find("record.force_on: no body named"),
+            std::string::npos);
+}
+
+TEST(LoadScene, BodyStartingInsideAWallIsRefused) {
+  const std::string msg = error_of("inside", edit("\"position\": [0, 0, 0.02]", "\"position\": [0, 0, 0.005]"));
+  EXPECT_NE(msg.find("starts inside \"floor\""), std::string::npos) << msg;
+}
+
+TEST(LoadScene, UnsafeDtIsRefusedUnlessAllowed) {
+  const std::string text = edit("\"dt\": \"auto\"", "\"dt\": 1e-3");
+  const std::string msg = error_of("dt", text);
+  EXPECT_NE(msg.find("dt: 0.001 s exceeds the predicted critical step"), std::string::npos) << msg;
+  EXPECT_EQ(error_of("dt-allowed", edit("\"dt\": \"auto\"", "\"dt\": 1e-3, \"allow_unsafe_dt\": true")), "");
+}
+
+TEST(LoadScene, UnknownLawAndShapeGetSuggestions) {
+  EXPECT_NE(error_of("law", edit("\"hertz-mindlin\"", "\"hertz-mindin\"")).find("did you mean \"hertz-mindlin\""),
+            std::string::npos);
+  EXPECT_NE(error_of("shape", edit("\"type\": \"sphere\"", "\"type\": \"sphre\"")).find("did you mean \"sphere\""),
+            std::string::npos);
+}
