@@ -13,10 +13,16 @@ namespace {
 
 double exponent(NormalLaw law) { return law == NormalLaw::linear ? 1.0 : 1.5; }
 
-// x'' = −max(0, x^n + ζ x^{(n-1)/2} x') for x > 0.
+// x'' = −max(0, x^n + ζ x^{(n-1)/2} x') for x > 0 (n is 1 or 3/2: square roots, no pow).
 double accel(double x, double v, double n, double zeta) {
   if (x <= 0) return 0;
-  const double f = std::pow(x, n) + zeta * std::pow(x, 0.5 * (n - 1)) * v;
+  double f;
+  if (n == 1.0) {
+    f = x + zeta * v;
+  } else {
+    const double r = std::sqrt(x);
+    f = x * r + zeta * std::sqrt(r) * v;
+  }
   return -std::max(0.0, f);
 }
 

@@ -2,22 +2,17 @@
 #include "dem/sphere_world.hpp"
 
 #include <algorithm>
-#include <chrono>
 #include <cmath>
 
 #include "contact/hertz.hpp"
 #include "contact/linear_spring_dashpot.hpp"
 #include "contact/tangential_spring.hpp"
 #include "core/error.hpp"
+#include "core/ticks.hpp"
 #include "dem/cell_grid.hpp"
 
 namespace asperity::dem {
 namespace {
-
-using Clock = std::chrono::steady_clock;
-double seconds_since(Clock::time_point t0) {
-  return std::chrono::duration<double>(Clock::now() - t0).count();
-}
 
 // What one contact needs, whatever the pair: geometry and the effective quantities.
 struct ContactGeometry {
@@ -254,7 +249,7 @@ void initialise(SphereWorld& world) {
 
 void step(SphereWorld& world, double dt) {
   const int n = world.size();
-  auto t0 = Clock::now();
+  const std::uint64_t t0 = ticks();
   for (int i = 0; i < n; ++i) {
     if (world.fixed[i]) continue;
     world.v.col(i) += 0.5 * dt * (world.force.col(i) / world.mass[i] + world.gravity);
@@ -265,23 +260,20 @@ void step(SphereWorld& world, double dt) {
       world.orientation[i] = (Quat(Eigen::AngleAxisd(angle, spin / angle)) * world.orientation[i]).normalized();
     }
   }
-  world.profile.integrate += seconds_since(t0);
-
-  t0 = Clock::now();
+  const std::uint64_t t1 = ticks();
   if (needs_rebuild(world)) rebuild_pairs(world);
-  world.profile.broad_phase += seconds_since(t0);
-
-  t0 = Clock::now();
+  const std::uint64_t t2 = ticks();
   compute_forces(world, dt);
-  world.profile.contact += seconds_since(t0);
-
-  t0 = Clock::now();
+  const std::uint64_t t3 = ticks();
   for (int i = 0; i < n; ++i) {
     if (world.fixed[i]) continue;
     world.v.col(i) += 0.5 * dt * (world.force.col(i) / world.mass[i] + world.gravity);
     world.w.col(i) += 0.5 * dt * world.torque.col(i) / world.inertia[i];
   }
-  world.profile.integrate += seconds_since(t0);
+  const std::uint64_t t4 = ticks();
+  world.profile.integrate += (t1 - t0) + (t4 - t3);
+  world.profile.broad_phase += t2 - t1;
+  world.profile.contact += t3 - t2;
   world.time += dt;
   ++world.steps;
 }

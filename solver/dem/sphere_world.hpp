@@ -46,11 +46,11 @@ struct WallContact {
   bool touching = false;
 };
 
-// Seconds spent in each phase of step(); summary.json reports it.
+// Ticks spent in each phase of step() (core/ticks.hpp); the runner converts them to seconds.
 struct Profile {
-  double broad_phase = 0;
-  double contact = 0;
-  double integrate = 0;
+  std::uint64_t broad_phase = 0;
+  std::uint64_t contact = 0;
+  std::uint64_t integrate = 0;
 };
 
 // Material-pair constants, computed once (index a * n_materials + b).
