@@ -12,6 +12,7 @@
 #include <sstream>
 
 #include "core/error.hpp"
+#include "core/ticks.hpp"
 #include "dem/sphere_world.hpp"
 #include "dem/time_step.hpp"
 #include "run/impact_measures.hpp"
@@ -169,6 +170,7 @@ RunResult run_scene(const scene::SceneDef& s, const RunOptions& options) {
   RunResult result;
   const auto wall0 = std::chrono::steady_clock::now();
   const double cpu0 = cpu_seconds();
+  const std::uint64_t ticks0 = ticks();
   ImpactMeasures im;
   im.start(0, w.record_force, w.record_overlap);
   const dem::EnergyTerms e0 = dem::energy(w);
@@ -221,6 +223,7 @@ RunResult run_scene(const scene::SceneDef& s, const RunOptions& options) {
   if (options.progress && last_progress > 0) std::fprintf(stderr, "\n");
   const double cpu = cpu_seconds() - cpu0;
   const double wall = std::chrono::duration<double>(std::chrono::steady_clock::now() - wall0).count();
+  const double per_tick = seconds_per_tick(wall, ticks() - ticks0);
 
   if (!unstable.empty()) {
     result.status = "unstable";
@@ -277,9 +280,9 @@ RunResult run_scene(const scene::SceneDef& s, const RunOptions& options) {
   j["simulated_time"] = w.time;
   j["cpu_seconds"] = cpu;
   j["wall_seconds"] = wall;
-  j["profile"] = {{"broad_phase", w.profile.broad_phase},
-                  {"contact", w.profile.contact},
-                  {"integrate", w.profile.integrate}};
+  j["profile"] = {{"broad_phase", per_tick * static_cast<double>(w.profile.broad_phase)},
+                  {"contact", per_tick * static_cast<double>(w.profile.contact)},
+                  {"integrate", per_tick * static_cast<double>(w.profile.integrate)}};
   j["neighbour_rebuilds"] = w.rebuilds;
   j["contact_updates"] = w.contact_updates;
   j["damping"] = {{"form", s.contact.law == scene::ContactLaw::linear
