@@ -1,0 +1,246 @@
+// Munjiza's distributed-potential contact of two tetrahedra: clipping and exact integration.
+#include "contact/munjiza_potential.hpp"
+
+#include <algorithm>
+#include <cmath>
+
+#include <Eigen/LU>
+
+namespace asperity::contact {
+namespace {
+
+// A triangle clipped by at most 7 planes has at most 10 vertices.
+constexpr int kMaxVertices = 12;
+
+// A polygon vertex: position, the four linear functions the clipping tests (barycentric
+// coordinates of the other element) and up to four carried linear values.
+struct Vertex {
+  Vec3 x;
+  double l[4];
+  double aux[4];
+};
+struct Polygon {
+  int n = 0;
+  Vertex v[kMaxVertices];
+};
+
+// Barycentric map of an element: L_{1..3} = B (x − x₀), L₀ = 1 − ΣL; gradients of L₀..L₃.
+struct BaryMap {
+  Vec3 origin;
+  Mat3 b;
+  Vec3 grad[4];
+  void coords(const Vec3& x, double* l) const {
+    const Vec3 r = b * (x - origin);
+    l[1] = r.x(), l[2] = r.y(), l[3] = r.z();
+    l[0] = 1.0 - r.x() - r.y() - r.z();
+  }
+};
+
+BaryMap bary_map(const TetNodes& t) {
+  BaryMap m;
+  m.origin = t[0];
+  Mat3 d;
+  d << t[1] - t[0], t[2] - t[0], t[3] - t[0];
+  m.b = d.inverse();
+  for (int k = 0; k < 3; ++k) m.grad[k + 1] = m.b.row(k).transpose();
+  m.grad[0] = -(m.grad[1] + m.grad[2] + m.grad[3]);
+  return m;
+}
+
+// Sutherland–Hodgman: keeps the part of `in` where s(v) ≥ 0, s linear along edges.
+template <class S>
+void clip(const Polygon& in, Polygon& out, S s) {
+  out.n = 0;
+  if (in.n == 0) return;
+  const Vertex* p = &in.v[in.n - 1];
+  double sp = s(*p);
+  for (int i = 0; i < in.n; ++i) {
+    const Vertex& q = in.v[i];
+    const double sq = s(q);
+    if ((sp >= 0) != (sq >= 0)) {
+      const double t = sp / (sp - sq);
+      Vertex& c = out.v[out.n++];
+      c.x = p->x + t * (q.x - p->x);
+      for (int k = 0; k < 4; ++k) {
+        c.l[k] = p->l[k] + t * (q.l[k] - p->l[k]);
+        c.aux[k] = p->aux[k] + t * (q.aux[k] - p->aux[k]);
+      }
+    }
+    if (sq >= 0) out.v[out.n++] = q;
+    p = &q;
+    sp = sq;
+  }
+  if (out.n < 3) out.n = 0;
+}
+
+// Outward faces: the face opposite node m, ordered so that its normal points out of a
+// positive-volume element.
+constexpr int kFace[4][3] = {{1, 2, 3}, {0, 3, 2}, {0, 1, 3}, {0, 2, 1}};
+
+// Internal faces of the centroid split: edge (i, j) + centroid, separating the sub-tetrahedra
+// opposite m and m2 (the two nodes not on the edge).
+constexpr int kInner[6][4] = {{0, 1, 2, 3}, {0, 2, 1, 3}, {0, 3, 1, 2},
+                              {1, 2, 0, 3}, {1, 3, 0, 2}, {2, 3, 0, 1}};
+
+// Integrals over a polygon of the linear φ (given per vertex) against linear weights, by a
+// triangle fan from vertex 0 (exact: the integrands are at most quadratic).
+struct FaceIntegrals {
+  double phi_n[3] = {0, 0, 0};     // ∫ φ N_k dS, carried aux[0..2]
+  double phi_l[4] = {0, 0, 0, 0};  // ∫ φ L_k dS, the clipping functions
+  Vec3 phi_x = Vec3::Zero();       // ∫ φ x dS
+  double phi = 0;                  // ∫ φ dS
+  double phi2 = 0;                 // ∫ φ² dS
+  double max_l = 0;                // largest L_m at a vertex (depth / height)
+};
+
+// One direction: the faces of contactor c are clipped against the sub-tetrahedra of target t;
+// forces to fc (on c's nodes) and ft (on t's nodes); returns U_t = p ∫_{c∩t} φ_t dV if asked.
+double one_way(const TetNodes& c, const BaryMap& cm, const TetNodes& t, const BaryMap& tm,
+               double penalty, bool with_energy, std::array<Vec3, 4>& fc, std::array<Vec3, 4>& ft,
+               double& depth, Vec3& phi_x, double& phi_w) {
+  double energy_sum[4] = {0, 0, 0, 0};  // Σ ∮ φ² g_m·n dS per sub-tetrahedron m of t
+  double gn[4];
+  for (int m = 0; m < 4; ++m) gn[m] = tm.grad[m].norm();
+  Polygon tri, inside, tmp, sub;
+  for (int f = 0; f < 4; ++f) {
+    const int* fn = kFace[f];
+    const Vec3 area_vec = 0.5 * (c[fn[1]] - c[fn[0]]).cross(c[fn[2]] - c[fn[0]]);
+    const double area = area_vec.norm();
+    if (!(area > 0)) continue;
+    const Vec3 normal = area_vec / area;
+    tri.n = 3;
+    for (int k = 0; k < 3; ++k) {
+      Vertex& v = tri.v[k];
+      v.x = c[fn[k]];
+      tm.coords(v.x, v.l);
+      v.aux[0] = k == 0, v.aux[1] = k == 1, v.aux[2] = k == 2, v.aux[3] = 0;
+    }
+    // Quick reject: all three vertices beyond one face plane of t.
+    bool outside = false;
+    for (int m = 0; m < 4 && !outside; ++m) {
+      outside = tri.v[0].l[m] < 0 && tri.v[1].l[m] < 0 && tri.v[2].l[m] < 0;
+    }
+    if (outside) continue;
+    // Inside t: L_m ≥ 0 for every m.
+    clip(tri, tmp, [](const Vertex& v) { return v.l[0]; });
+    clip(tmp, inside, [](const Vertex& v) { return v.l[1]; });
+    clip(inside, tmp, [](const Vertex& v) { return v.l[2]; });
+    clip(tmp, inside, [](const Vertex& v) { return v.l[3]; });
+    if (inside.n == 0) continue;
+    Vec3 f_face = Vec3::Zero();
+    double phi_n[3] = {0, 0, 0}, phi_l[4] = {0, 0, 0, 0};
+    for (int m = 0; m < 4; ++m) {
+      // Sub-tetrahedron m: L_k − L_m ≥ 0 for k ≠ m.
+      const Polygon* src = &inside;
+      Polygon* dst = &sub;
+      Polygon* spare = &tmp;
+      for (int k = 0; k < 4; ++k) {
+        if (k == m) continue;
+        clip(*src, *dst, [k, m](const Vertex& v) { return v.l[k] - v.l[m]; });
+        src = dst;
+        std::swap(dst, spare);
+      }
+      const Polygon& q = *src;
+      if (q.n == 0) continue;
+      double phi[kMaxVertices];
+      for (int i = 0; i < q.n; ++i) {
+        phi[i] = 4.0 * q.v[i].l[m];
+        depth = std::max(depth, q.v[i].l[m] / gn[m]);
+      }
+      double i_phi = 0, i_phi2 = 0;
+      for (int i = 1; i + 1 < q.n; ++i) {
+        const Vertex &v0 = q.v[0], &v1 = q.v[i], &v2 = q.v[i + 1];
+        const double a = 0.5 * (v1.x - v0.x).cross(v2.x - v0.x).dot(normal);
+        const double p0 = phi[0], p1 = phi[i], p2 = phi[i + 1];
+        const double sp = p0 + p1 + p2;
+        const double w = a / 12.0;
+        i_phi += a * sp / 3.0;
+        i_phi2 += w * (p0 * p0 + p1 * p1 + p2 * p2 + sp * sp);
+        for (int k = 0; k < 3; ++k) {
+          phi_n[k] += w * (p0 * v0.aux[k] + p1 * v1.aux[k] + p2 * v2.aux[k] +
+                           sp * (v0.aux[k] + v1.aux[k] + v2.aux[k]));
+        }
+        for (int k = 0; k < 4; ++k) {
+          phi_l[k] += w * (p0 * v0.l[k] + p1 * v1.l[k] + p2 * v2.l[k] +
+                           sp * (v0.l[k] + v1.l[k] + v2.l[k]));
+        }
+        phi_x += w * (p0 * v0.x + p1 * v1.x + p2 * v2.x + sp * (v0.x + v1.x + v2.x));
+      }
+      phi_w += i_phi;
+      if (with_energy) energy_sum[m] += i_phi2 * 4.0 * tm.grad[m].dot(normal);
+    }
+    // Traction −p φ n on c's face; the reaction on t.
+    f_face = -penalty * normal;
+    for (int k = 0; k < 3; ++k) fc[fn[k]] += phi_n[k] * f_face;
+    for (int k = 0; k < 4; ++k) ft[k] -= phi_l[k] * f_face;
+  }
+  if (!with_energy) return 0;
+
+  // t's internal faces clipped against c (clipping functions: c's barycentrics).
+  const Vec3 centroid = 0.25 * (t[0] + t[1] + t[2] + t[3]);
+  for (const auto& e : kInner) {
+    const int i = e[0], j = e[1], m = e[2], m2 = e[3];
+    const Vec3 d = tm.grad[m] - tm.grad[m2];  // points out of sub-tetrahedron m
+    const double dn = d.norm();
+    if (!(dn > 0)) continue;
+    const Vec3 n = d / dn;
+    tri.n = 3;
+    const Vec3 pts[3] = {t[i], t[j], centroid};
+    const double phis[3] = {0, 0, 1};
+    for (int k = 0; k < 3; ++k) {
+      tri.v[k].x = pts[k];
+      cm.coords(pts[k], tri.v[k].l);
+      tri.v[k].aux[0] = phis[k];
+      tri.v[k].aux[1] = tri.v[k].aux[2] = tri.v[k].aux[3] = 0;
+    }
+    bool outside = false;
+    for (int k = 0; k < 4 && !outside; ++k) {
+      outside = tri.v[0].l[k] < 0 && tri.v[1].l[k] < 0 && tri.v[2].l[k] < 0;
+    }
+    if (outside) continue;
+    clip(tri, tmp, [](const Vertex& v) { return v.l[0]; });
+    clip(tmp, inside, [](const Vertex& v) { return v.l[1]; });
+    clip(inside, tmp, [](const Vertex& v) { return v.l[2]; });
+    clip(tmp, inside, [](const Vertex& v) { return v.l[3]; });
+    double i_phi2 = 0;
+    for (int k = 1; k + 1 < inside.n; ++k) {
+      const Vertex &v0 = inside.v[0], &v1 = inside.v[k], &v2 = inside.v[k + 1];
+      const double a = std::abs(0.5 * (v1.x - v0.x).cross(v2.x - v0.x).dot(n));
+      const double p0 = v0.aux[0], p1 = v1.aux[0], p2 = v2.aux[0];
+      const double sp = p0 + p1 + p2;
+      i_phi2 += a / 12.0 * (p0 * p0 + p1 * p1 + p2 * p2 + sp * sp);
+    }
+    energy_sum[m] += i_phi2 * 4.0 * tm.grad[m].dot(n);
+    energy_sum[m2] -= i_phi2 * 4.0 * tm.grad[m2].dot(n);
+  }
+  double u = 0;
+  // g_m = 4 ∇L_m: ∫ φ dV = Σ φ² g·n / (2 |g|²).
+  for (int m = 0; m < 4; ++m) u += energy_sum[m] / (2.0 * 16.0 * gn[m] * gn[m]);
+  return penalty * u;
+}
+
+}  // namespace
+
+Eigen::Vector4d barycentric(const TetNodes& t, const Vec3& x) {
+  const BaryMap m = bary_map(t);
+  Eigen::Vector4d l;
+  m.coords(x, l.data());
+  return l;
+}
+
+PotentialPairForce munjiza_potential(const TetNodes& a, const TetNodes& b, double penalty,
+                                     bool with_energy) {
+  PotentialPairForce out;
+  const BaryMap am = bary_map(a), bm = bary_map(b);
+  Vec3 phi_x = Vec3::Zero();
+  double phi_w = 0;
+  out.energy = one_way(a, am, b, bm, penalty, with_energy, out.on_a, out.on_b, out.depth, phi_x, phi_w);
+  out.energy += one_way(b, bm, a, am, penalty, with_energy, out.on_b, out.on_a, out.depth, phi_x, phi_w);
+  if (phi_w > 0) {
+    out.weight = phi_w;
+    out.point = phi_x / phi_w;
+  }
+  return out;
+}
+
+}  // namespace asperity::contact

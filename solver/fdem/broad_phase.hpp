@@ -1,0 +1,22 @@
+// Broad phase for FEM/DEM contact: candidate pairs of surface tetrahedra of different bodies.
+#pragma once
+
+#include <cstdint>
+#include <vector>
+
+#include <Eigen/Core>
+
+#include "fdem/fdem_world.hpp"
+
+namespace asperity::fdem {
+
+// Every pair (a < b) of tetrahedra of different bodies, not both on fixed bodies, whose
+// axis-aligned boxes grown by margin/2 on every side overlap, sorted by (a, b). Sort and sweep
+// along the axis of largest spread (Baraff 1992): O(n log n + k) for n tetrahedra and k pairs of
+// overlapping x-intervals, about linear in n for a body's surface layer. Because each box grows
+// by margin/2, the list stays complete until some node has moved margin/2.
+std::vector<TetPair> candidate_pairs(const Eigen::Matrix3Xd& x, const Eigen::Matrix4Xi& tets,
+                                     const std::vector<int>& tet_body,
+                                     const std::vector<std::uint8_t>& body_fixed, double margin);
+
+}  // namespace asperity::fdem

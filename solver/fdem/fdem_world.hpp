@@ -1,0 +1,159 @@
+// FEM/DEM world: deformable tetrahedral bodies, rigid polyhedra and fixed blocks, in contact by
+// Munjiza's distributed potential, under gravity, stepped by explicit central differences.
+#pragma once
+
+#include <cstdint>
+#include <string>
+#include <vector>
+
+#include <Eigen/Core>
+
+#include "core/material.hpp"
+#include "core/mesh.hpp"
+#include "core/vec.hpp"
+#include "fem/tet_elements.hpp"
+
+namespace asperity::fdem {
+
+enum class BodyKind : std::uint8_t { deformable, rigid, fixed };
+
+// A body to add: its mesh already placed in the world frame (m), its material and motion.
+struct BodyDef {
+  std::string name;
+  BodyKind kind = BodyKind::deformable;
+  TetMesh mesh;
+  Material material;
+  Vec3 velocity = Vec3::Zero();          // m/s (deformable: every node; rigid: the centroid)
+  Vec3 angular_velocity = Vec3::Zero();  // rad/s, about the centroid
+  double damping = 0;                    // deformable: Kelvin–Voigt β, s (TetElements::damping)
+};
+
+// Penalty contact parameters (contact/munjiza_potential.hpp).
+struct ContactDef {
+  // p = alpha · E (E the largest Young's modulus among the bodies) unless `penalty` > 0.
+  // α = 10: the penetration of a layer of elements pressed together is E/p = 1/10 of their own
+  // elastic shortening (Munjiza 2004, eqs 2.56–2.57), while the penalty limits the step by about
+  // √α = 3.2 (α = 100 would give 1 % at a 10× smaller step). Against a Hertz contact resolved by
+  // elements of size h the extra compliance is about h/(4 α a) of the approach (a the contact
+  // radius), a few per cent at a ≈ h: below the mesh error at the resolutions that run in a
+  // minute, which is what decides it.
+  double alpha = 10;
+  double penalty = 0;   // Pa, overrides alpha when > 0
+  double friction = 0;  // Coulomb μ
+};
+
+struct WorldDef {
+  std::vector<BodyDef> bodies;
+  ContactDef contact;
+  Vec3 gravity = Vec3::Zero();  // m/s²
+  int record_body = -1;         // whose total contact force is recorded
+};
+
+struct Body {
+  std::string name;
+  BodyKind kind = BodyKind::deformable;
+  int node_begin = 0, node_end = 0;  // its nodes in the world arrays
+  int elements = -1;                 // deformable: index into World::elements
+  int rigid = -1;                    // rigid: index into World::rigid
+  double mass = 0;                   // kg (exact, from the tetrahedra)
+  double young = 0;                  // Pa
+};
+
+// 6-DOF state of a rigid polyhedron; its nodes follow x = c + R r.
+struct RigidBody {
+  int body = -1;
+  Vec3 centre = Vec3::Zero(), velocity = Vec3::Zero(), omega = Vec3::Zero();  // ω in world frame
+  Quat orientation = Quat::Identity();
+  double mass = 0;
+  Mat3 inertia_body = Mat3::Identity();  // about the centre, body frame, kg·m²
+  Eigen::Matrix3Xd r_body;               // node offsets in the body frame
+  Vec3 force = Vec3::Zero(), torque = Vec3::Zero();
+  Vec3 centre_initial = Vec3::Zero();
+};
+
+// One candidate pair of surface tetrahedra (indices into World::surface_tets), with the
+// tangential-spring history of its friction.
+struct TetPair {
+  int a = 0, b = 0;
+  Vec3 spring = Vec3::Zero();
+};
+
+struct Profile {
+  double broad_phase = 0, contact = 0, internal = 0, integrate = 0;  // s
+};
+
+struct World {
+  // Nodes, structure of arrays. Fixed nodes have mass 0 and inverse mass 0.
+  Eigen::Matrix3Xd x, v, f;    // m, m/s, N (contact + internal, without gravity)
+  Eigen::Matrix3Xd x_initial;  // gravity potential is measured from here
+  std::vector<double> mass, inv_mass;
+  std::vector<int> node_body;
+
+  std::vector<Body> bodies;
+  std::vector<fem::TetElements> elements;
+  std::vector<RigidBody> rigid;
+  Vec3 gravity = Vec3::Zero();
+
+  // Contact: surface-adjacent tetrahedra (a node on the body's surface), their body, and
+  // per-surface-face data for the time step.
+  Eigen::Matrix4Xi surface_tets;
+  std::vector<int> surface_tet_body;
+  double penalty = 0;  // Pa
+  double friction = 0;
+  // Surface triangles (global nodes) and the penalty stiffness of each pressed into another
+  // body, N/m (fdem/time_step.hpp).
+  Eigen::Matrix3Xi face_nodes;
+  std::vector<double> face_stiffness;
+
+  // Broad phase (fdem/broad_phase.hpp): Verlet list of tetrahedron pairs whose boxes, grown by
+  // the skin, overlap; rebuilt when a node has moved more than skin/2.
+  double skin = 0;  // m
+  std::vector<TetPair> pairs;
+  Eigen::Matrix3Xd x_at_build;
+  long rebuilds = 0;
+
+  // Bookkeeping.
+  bool want_energy = true;    // compute elastic and contact energy in the next step
+  double elastic_energy = 0;  // J, at the last step that computed it
+  double contact_energy = 0;  // J, penalty + friction springs
+  double dissipated = 0;      // J, accumulated: viscous damping and friction
+  long contact_evaluations = 0;  // candidate pairs run through the kernel, accumulated
+  long contacts_touching = 0;    // of those, in contact
+
+  // The recorded body: total contact force on it, and the deepest penetration among its pairs
+  // (-1e300 when none touches).
+  int record_body = -1;
+  Vec3 record_force = Vec3::Zero();
+  double record_depth = -1e300;
+
+  // Set when an element inverted (J ≤ 0): body, element, J and time; the world stops there.
+  std::string failure;
+
+  double time = 0;
+  long steps = 0;
+  Profile profile;
+
+  int node_count() const { return static_cast<int>(x.cols()); }
+};
+
+// Builds the world (throws InputError naming the body for an invalid mesh) and computes the
+// initial forces.
+World make_world(const WorldDef& def);
+
+// One explicit central-difference step (velocity form): half kick → drift → broad phase →
+// contact forces → internal forces → half kick.
+void step(World& world, double dt);
+
+struct EnergyTerms {
+  double kinetic = 0, elastic = 0, contact = 0, gravity = 0, dissipated = 0;
+  double total() const { return kinetic + elastic + contact + gravity + dissipated; }
+};
+// Elastic and contact terms are those of the last step with want_energy set.
+EnergyTerms energy(const World& world);
+
+// Linear momentum of all moving bodies, kg·m/s; centre-of-mass velocity of one body, m/s.
+Vec3 momentum(const World& world);
+Vec3 body_velocity(const World& world, int body);
+Vec3 body_centre(const World& world, int body);
+
+}  // namespace asperity::fdem
