@@ -1,0 +1,68 @@
+#!/usr/bin/env bash
+# Checks the contract's exit codes and outputs by running the program as a user would.
+set -u
+bin=$1
+src=$2
+work=$(mktemp -d)
+trap 'rm -rf "$work"' EXIT
+passed=0
+failed=0
+check() {  # check NAME CONDITION...
+  local name=$1; shift
+  if "$@"; then passed=$((passed + 1)); else failed=$((failed + 1)); echo "FAIL: $name"; fi
+}
+case_scene() {  # the scene of a validation case, as a scene file
+  /usr/bin/python3 -c "import json,sys; print(json.dumps(json.load(open(sys.argv[1]))['scene']))" "$1"
+}
+
+# A good run: exit 0, the three files, a parseable summary with status ok.
+case_scene "$src/validation/cases/hertz/hertz-glass-sphere-plane-1ms.json" > "$work/good.json"
+"$bin" run "$work/good.json" --out "$work/good" -q
+check "good run exits 0" test $? -eq 0
+check "good run writes summary.json" test -s "$work/good/summary.json"
+check "force.csv header" test "$(head -1 "$work/good/force.csv")" = "t,fx,fy,fz,f"
+check "energy.csv header" test "$(head -1 "$work/good/energy.csv")" = "t,kinetic,elastic,contact,gravity,dissipated,total"
+check "status ok" grep -q '"status": "ok"' "$work/good/summary.json"
+
+# Bad input: exit 2, one line on stderr naming the file and key, no output folder.
+sed 's/"radius": 0.01/"radius": -0.01/' "$work/good.json" > "$work/bad.json"
+"$bin" run "$work/bad.json" --out "$work/bad" 2> "$work/bad.err"
+check "negative radius exits 2" test $? -eq 2
+check "one line on stderr" test "$(wc -l < "$work/bad.err")" -eq 1
+check "names file and key" grep -q "bad.json: bodies\[0\].shape.radius: must be > 0" "$work/bad.err"
+check "no output written" test ! -e "$work/bad"
+
+printf '{"name": "x", "duration": 0.1,\n "bodies": [}\n' > "$work/syntax.json"
+"$bin" run "$work/syntax.json" --out "$work/syntax" 2> "$work/syntax.err"
+check "syntax error exits 2" test $? -eq 2
+check "syntax error has line:col" grep -q "syntax.json:2:" "$work/syntax.err"
+
+"$bin" run "$work/missing.json" --out "$work/m" 2> /dev/null
+check "missing file exits 2" test $? -eq 2
+"$bin" run 2> /dev/null
+check "missing argument exits 2" test $? -eq 2
+"$bin" frobnicate 2> /dev/null
+check "unknown command exits 2" test $? -eq 2
+"$bin" --help > /dev/null
+check "--help exits 0" test $? -eq 0
+
+# Unstable: a linear contact stepped at 3x its critical step with the check waived: exit 3,
+# summary.json says unstable, no curves.
+/usr/bin/python3 - "$work/good.json" "$work/unstable.json" <<'PY'
+import json, sys
+s = json.load(open(sys.argv[1]))
+s["contact"] = {"law": "linear", "kn": 1.0e7}
+m = 2500 * 4 / 3 * 3.141592653589793 * 0.01 ** 3
+s["dt"] = 3 * 2 * (m / 1.0e7) ** 0.5
+s["allow_unsafe_dt"] = True
+s["duration"] = 0.05
+json.dump(s, open(sys.argv[2], "w"))
+PY
+mkdir -p "$work/unstable" && echo "stale" > "$work/unstable/force.csv"
+"$bin" run "$work/unstable.json" --out "$work/unstable" -q
+check "unstable exits 3" test $? -eq 3
+check "unstable summary" grep -q '"status": "unstable"' "$work/unstable/summary.json"
+check "no curves from an unstable run" test ! -e "$work/unstable/force.csv"
+
+echo "$passed passed, $failed failed"
+test "$failed" -eq 0
