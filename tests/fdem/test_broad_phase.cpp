@@ -1,0 +1,56 @@
+// Broad phase: the sort-and-sweep list equals the brute-force list.
+#include <gtest/gtest.h>
+
+#include <random>
+
+#include "fdem/broad_phase.hpp"
+#include "fdem/structured_mesh.hpp"
+
+namespace asperity::fdem {
+namespace {
+
+TEST(BroadPhase, MatchesBruteForce) {
+  // Two balls touching plus a fixed block under them, randomly perturbed.
+  const TetMesh a = ball_mesh(1.0, 3), b = ball_mesh(1.0, 3),
+                c = box_mesh(Vec3(-3, -3, -2), Vec3(3, 3, -0.9), 2, 2, 1);
+  Eigen::Matrix3Xd x(3, a.nodes.cols() + b.nodes.cols() + c.nodes.cols());
+  x << a.nodes, (b.nodes.colwise() + Vec3(1.9, 0.2, 0.1)), c.nodes;
+  std::mt19937 rng(7);
+  std::uniform_real_distribution<double> u(-0.02, 0.02);
+  for (Eigen::Index i = 0; i < x.size(); ++i) x.data()[i] += u(rng);
+  const int na = static_cast<int>(a.nodes.cols()), nb = static_cast<int>(b.nodes.cols());
+  Eigen::Matrix4Xi tets(4, a.tets.cols() + b.tets.cols() + c.tets.cols());
+  tets << a.tets, (b.tets.array() + na).matrix(), (c.tets.array() + na + nb).matrix();
+  std::vector<int> body;
+  for (Eigen::Index k = 0; k < a.tets.cols(); ++k) body.push_back(0);
+  for (Eigen::Index k = 0; k < b.tets.cols(); ++k) body.push_back(1);
+  for (Eigen::Index k = 0; k < c.tets.cols(); ++k) body.push_back(2);
+  const std::vector<std::uint8_t> fixed{0, 0, 1};
+  const double margin = 0.05;
+  const auto pairs = candidate_pairs(x, tets, body, fixed, margin);
+  std::vector<std::pair<int, int>> brute;
+  auto box = [&](int k, Vec3& lo, Vec3& hi) {
+    lo = hi = x.col(tets(0, k));
+    for (int i = 1; i < 4; ++i) lo = lo.cwiseMin(x.col(tets(i, k))), hi = hi.cwiseMax(x.col(tets(i, k)));
+    lo.array() -= 0.5 * margin;
+    hi.array() += 0.5 * margin;
+  };
+  for (int i = 0; i < tets.cols(); ++i) {
+    for (int j = i + 1; j < tets.cols(); ++j) {
+      if (body[i] == body[j] || (fixed[body[i]] && fixed[body[j]])) continue;
+      Vec3 li, hi, lj, hj;
+      box(i, li, hi);
+      box(j, lj, hj);
+      if ((li.array() <= hj.array()).all() && (lj.array() <= hi.array()).all()) brute.emplace_back(i, j);
+    }
+  }
+  ASSERT_GT(brute.size(), 10u);
+  ASSERT_EQ(pairs.size(), brute.size());
+  for (std::size_t k = 0; k < brute.size(); ++k) {
+    EXPECT_EQ(pairs[k].a, brute[k].first);
+    EXPECT_EQ(pairs[k].b, brute[k].second);
+  }
+}
+
+}  // namespace
+}  // namespace asperity::fdem
