@@ -1,0 +1,70 @@
+// `asperity mesh INPUT --faces N --out DIR`: check and repair a surface mesh, simplify it to exactly
+// N triangles, tetrahedralize it keeping them; DIR/surface.off, DIR/tets.vtk, DIR/mesh.json.
+#include <filesystem>
+#include <iostream>
+#include <memory>
+
+#include "app/commands.hpp"
+#include "core/error.hpp"
+#include "geometry/mesh_pipeline.hpp"
+
+namespace asperity::app {
+namespace {
+namespace fs = std::filesystem;
+
+struct MeshArgs {
+  fs::path input, out;
+  long faces = 0;
+  double scale = 1.0;
+  double quality = geometry::TetOptions{}.radius_edge_ratio;
+  double min_dihedral = 0;
+  bool no_tets = false, quiet = false;
+};
+
+int cmd_mesh(const MeshArgs& a) {
+  geometry::PipelineOptions options;
+  options.faces = a.faces;
+  options.read.scale = a.scale;
+  options.tetrahedralize = !a.no_tets;
+  options.tet.radius_edge_ratio = a.quality;
+  options.tet.min_dihedral_deg = a.min_dihedral;
+  const geometry::PreparedParticle p = geometry::prepare_particle(a.input, options);
+  geometry::write_prepared_particle(p, a.out);
+  if (!a.quiet) {
+    for (const auto& w : p.log.warnings) std::cerr << "asperity: warning: " << a.input.string() << ": " << w << "\n";
+    std::cerr << a.input.string() << ": " << p.source.faces.cols() << " -> " << p.surface.faces.cols()
+              << " triangles, volume change " << p.change.volume_change_rel << ", max asperity "
+              << p.change.max_asperity_rel_source << " -> " << p.change.max_asperity_rel;
+    if (!a.no_tets) {
+      std::cerr << ", " << p.quality.tets << " tets (min dihedral " << p.quality.min_dihedral_deg << " deg)";
+    }
+    std::cerr << " -> " << a.out.string() << "\n";
+  }
+  return kExitOk;
+}
+
+}  // namespace
+
+void add_mesh_command(CLI::App& app, Action& action) {
+  auto args = std::make_shared<MeshArgs>();
+  auto* cmd = app.add_subcommand(
+      "mesh", "Check a surface mesh (STL, OBJ, PLY, OFF), simplify it to exactly N triangles and "
+              "tetrahedralize it keeping them: writes DIR/surface.off, DIR/tets.vtk, DIR/mesh.json");
+  cmd->add_option("input", args->input, "Surface mesh file (.stl, .obj, .ply, .off)")->required();
+  cmd->add_option("--faces", args->faces,
+                  "Exact triangle count of the result: even, at least 4, at most the input's (default: keep)")
+      ->check(CLI::NonNegativeNumber);
+  cmd->add_option("--out", args->out, "Output folder")->required();
+  cmd->add_option("--scale", args->scale, "Factor to metres for every coordinate (1e-3 for millimetres)")
+      ->check(CLI::PositiveNumber);
+  cmd->add_option("--quality", args->quality,
+                  "TetGen radius-edge bound with interior points only (0: no refinement)")
+      ->check(CLI::NonNegativeNumber);
+  cmd->add_option("--min-dihedral", args->min_dihedral, "TetGen smallest dihedral angle asked for, degrees")
+      ->check(CLI::Range(0.0, 70.0));
+  cmd->add_flag("--no-tets", args->no_tets, "Surface only: no tetrahedralization");
+  cmd->add_flag("-q,--quiet", args->quiet, "No summary line on stderr");
+  cmd->callback([args, &action] { action = [args] { return cmd_mesh(*args); }; });
+}
+
+}  // namespace asperity::app

@@ -1,0 +1,95 @@
+// `asperity particle --seed S --out FILE`: a reproducible rock-like particle surface; or
+// `asperity particle --set SET.json --out DIR`: every particle a set lists (data/particles/).
+#include <filesystem>
+#include <iostream>
+#include <limits>
+#include <memory>
+
+#include "app/commands.hpp"
+#include "core/error.hpp"
+#include "geometry/random_particle.hpp"
+#include "geometry/repair_mesh.hpp"
+#include "geometry/write_mesh.hpp"
+#include "io/json_file.hpp"
+
+namespace asperity::app {
+namespace {
+namespace fs = std::filesystem;
+
+struct ParticleArgs {
+  geometry::ParticleDef def;
+  fs::path out, set;
+  bool quiet = false;
+};
+
+void make_particle(const geometry::ParticleDef& def, const fs::path& out, bool quiet) {
+  const SurfaceMesh mesh = geometry::random_particle(def);
+  // The construction guarantees a valid solid (random_particle.hpp); checked all the same.
+  const geometry::MeshCheck check = geometry::check_mesh(mesh, true);
+  ASPERITY_CHECK(check.valid());
+  if (!out.parent_path().empty()) fs::create_directories(out.parent_path());
+  geometry::write_surface_mesh(out, mesh);
+  if (!quiet) {
+    std::cerr << "particle seed " << def.seed << ": " << mesh.faces.cols() << " triangles, volume "
+              << check.volume << " m^3 -> " << out.string() << "\n";
+  }
+}
+
+// data/particles/set.json: {"particles": [{"name", "seed", "size", ...}, ...]}; keys not given
+// take ParticleDef's defaults.
+int make_set(const fs::path& set_file, const fs::path& dir, bool quiet) {
+  const io::Json json = io::read_json_file(set_file);
+  const io::JsonReader root(json, set_file, "");
+  root.only_keys({"description", "format", "particles"});
+  const std::string format = root.has("format") ? root.string("format") : "off";
+  const io::JsonReader list = root.child("particles");
+  const std::size_t n = list.require_array();
+  for (std::size_t i = 0; i < n; ++i) {
+    const io::JsonReader r = list.at(i);
+    r.only_keys({"name", "seed", "size", "elongation", "flatness", "angularity", "roughness", "faces"});
+    geometry::ParticleDef d;
+    d.seed = static_cast<std::uint64_t>(r.integer("seed", 0, std::numeric_limits<long long>::max()));
+    d.size = r.number_or("size", d.size);
+    d.elongation = r.number_or("elongation", d.elongation);
+    d.flatness = r.number_or("flatness", d.flatness);
+    d.angularity = r.number_or("angularity", d.angularity);
+    d.roughness = r.number_or("roughness", d.roughness);
+    if (r.has("faces")) d.faces = static_cast<long>(r.integer("faces", 20, 2'000'000));
+    if (const std::string problem = geometry::particle_def_problem(d); !problem.empty()) r.fail("", problem);
+    make_particle(d, dir / (r.string("name") + "." + format), quiet);
+  }
+  return kExitOk;
+}
+
+}  // namespace
+
+void add_particle_command(CLI::App& app, Action& action) {
+  auto args = std::make_shared<ParticleArgs>();
+  auto* cmd = app.add_subcommand(
+      "particle", "Generate a reproducible rock-like particle surface (closed, outward) into FILE "
+                  "(.off, .obj, .ply, .stl); or with --set, every particle a set file lists into DIR");
+  cmd->add_option("--seed", args->def.seed, "Random seed (the same seed gives the same particle)");
+  cmd->add_option("--out", args->out, "Output file (or folder with --set)")->required();
+  cmd->add_option("--set", args->set, "A particle set (JSON, e.g. data/particles/set.json)");
+  cmd->add_option("--size", args->def.size, "Equivalent-sphere diameter, m")->capture_default_str();
+  cmd->add_option("--elongation", args->def.elongation, "b/a of the base ellipsoid, (0, 1]")->capture_default_str();
+  cmd->add_option("--flatness", args->def.flatness, "c/b of the base ellipsoid, (0, 1]")->capture_default_str();
+  cmd->add_option("--angularity", args->def.angularity, "Planar cuts: 0 none to 1 many and deep")->capture_default_str();
+  cmd->add_option("--roughness", args->def.roughness, "Multi-scale surface noise, 0 to 1")->capture_default_str();
+  cmd->add_option("--faces", args->def.faces, "Triangle count (rounded to 20 n^2)")->capture_default_str();
+  cmd->add_flag("-q,--quiet", args->quiet, "No summary line on stderr");
+  cmd->callback([args, cmd, &action] {
+    if (!args->set.empty() && cmd->count("--seed") > 0) throw CLI::ValidationError("--set", "give --seed or --set, not both");
+    if (args->set.empty() && cmd->count("--seed") == 0) throw CLI::RequiredError("--seed (or --set)");
+    action = [args] {
+      if (!args->set.empty()) return make_set(args->set, args->out, args->quiet);
+      if (const std::string problem = geometry::particle_def_problem(args->def); !problem.empty()) {
+        throw InputError("particle: " + problem);
+      }
+      make_particle(args->def, args->out, args->quiet);
+      return kExitOk;
+    };
+  });
+}
+
+}  // namespace asperity::app

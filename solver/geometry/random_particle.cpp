@@ -1,0 +1,169 @@
+// Generated rock-like particles (issue 3, item 7); the construction and why it is valid are in
+// the header.
+#include "geometry/random_particle.hpp"
+
+#include <algorithm>
+#include <array>
+#include <cmath>
+#include <map>
+#include <numbers>
+#include <sstream>
+#include <vector>
+
+#include "core/error.hpp"
+#include "geometry/mass_properties.hpp"
+#include "geometry/splitmix64.hpp"
+
+namespace asperity::geometry {
+namespace {
+
+// Sum of random plane waves on the unit sphere, Σ A sin(k d·u + φ).
+struct Waves {
+  std::vector<Vec3> direction;
+  std::vector<double> wavenumber, amplitude, phase;
+
+  void add(SplitMix64& rng, double k, double a) {
+    direction.push_back(rng.unit_vector());
+    wavenumber.push_back(k);
+    amplitude.push_back(a);
+    phase.push_back(rng.uniform(0.0, 2.0 * std::numbers::pi));
+  }
+  double operator()(const Vec3& u) const {
+    double s = 0;
+    for (std::size_t i = 0; i < direction.size(); ++i)
+      s += amplitude[i] * std::sin(wavenumber[i] * direction[i].dot(u) + phase[i]);
+    return s;
+  }
+};
+
+// The regular icosahedron: the 12 points (0, ±1, ±φ) cyclically; its faces are the triples at
+// mutual distance 2 (the edge length), oriented outward.
+void icosahedron(std::vector<Vec3>& v, std::vector<std::array<int, 3>>& f) {
+  const double phi = (1.0 + std::sqrt(5.0)) / 2.0;
+  for (double s1 : {-1.0, 1.0})
+    for (double s2 : {-1.0, 1.0}) {
+      v.emplace_back(0, s1, s2 * phi);
+      v.emplace_back(s1, s2 * phi, 0);
+      v.emplace_back(s2 * phi, 0, s1);
+    }
+  auto edge = [&](int a, int b) { return std::abs((v[a] - v[b]).norm() - 2.0) < 1e-9; };
+  for (int a = 0; a < 12; ++a)
+    for (int b = a + 1; b < 12; ++b)
+      for (int c = b + 1; c < 12; ++c)
+        if (edge(a, b) && edge(b, c) && edge(a, c)) {
+          if (v[a].dot((v[b] - v[a]).cross(v[c] - v[a])) > 0) {
+            f.push_back({a, b, c});
+          } else {
+            f.push_back({a, c, b});
+          }
+        }
+  ASPERITY_CHECK(f.size() == 20);
+}
+
+// Geodesic icosphere of frequency n: unit vectors and outward triangles. A grid point is keyed by
+// its integer barycentric weights on the icosahedron's corners, so points on shared edges are
+// one vertex and computed identically from either face.
+void geodesic_sphere(int n, std::vector<Vec3>& u, std::vector<std::array<int, 3>>& tris) {
+  std::vector<Vec3> ico;
+  std::vector<std::array<int, 3>> ico_faces;
+  icosahedron(ico, ico_faces);
+  std::map<std::array<int, 6>, int> index;
+  auto vertex = [&](const std::array<int, 3>& corner, int wa, int wb, int wc) {
+    std::array<std::pair<int, int>, 3> w{{{wa ? corner[0] : -1, wa}, {wb ? corner[1] : -1, wb}, {wc ? corner[2] : -1, wc}}};
+    std::sort(w.begin(), w.end());  // the same order, hence the same sum, from every face
+    std::array<int, 6> key{};
+    for (int k = 0; k < 3; ++k) {
+      key[2 * k] = w[k].first;
+      key[2 * k + 1] = w[k].second;
+    }
+    auto [it, fresh] = index.emplace(key, static_cast<int>(u.size()));
+    if (fresh) {
+      Vec3 x = Vec3::Zero();
+      for (const auto& [c, wt] : w)
+        if (wt > 0) x += static_cast<double>(wt) * ico[c];
+      u.push_back(x.normalized());
+    }
+    return it->second;
+  };
+  for (const auto& f : ico_faces) {
+    std::vector<std::vector<int>> grid(n + 1);
+    for (int i = 0; i <= n; ++i)
+      for (int j = 0; i + j <= n; ++j) grid[i].push_back(vertex(f, n - i - j, i, j));
+    for (int i = 0; i < n; ++i)
+      for (int j = 0; i + j < n; ++j) {
+        tris.push_back({grid[i][j], grid[i + 1][j], grid[i][j + 1]});
+        if (i + j < n - 1) tris.push_back({grid[i + 1][j], grid[i + 1][j + 1], grid[i][j + 1]});
+      }
+  }
+}
+
+}  // namespace
+
+long particle_face_count(long faces) {
+  const long n = std::max(1L, std::lround(std::sqrt(static_cast<double>(std::max(faces, 1L)) / 20.0)));
+  return 20 * n * n;
+}
+
+std::string particle_def_problem(const ParticleDef& d) {
+  std::ostringstream s;
+  if (!(d.size > 0) || !std::isfinite(d.size)) s << "size must be a positive length in m (got " << d.size << ")";
+  else if (!(d.elongation > 0 && d.elongation <= 1)) s << "elongation must lie in (0, 1] (got " << d.elongation << ")";
+  else if (!(d.flatness > 0 && d.flatness <= 1)) s << "flatness must lie in (0, 1] (got " << d.flatness << ")";
+  else if (!(d.angularity >= 0 && d.angularity <= 1)) s << "angularity must lie in [0, 1] (got " << d.angularity << ")";
+  else if (!(d.roughness >= 0 && d.roughness <= 1)) s << "roughness must lie in [0, 1] (got " << d.roughness << ")";
+  else if (d.faces < 20 || d.faces > 2'000'000) s << "faces must lie in [20, 2000000] (got " << d.faces << ")";
+  return s.str();
+}
+
+SurfaceMesh random_particle(const ParticleDef& def) {
+  if (const std::string problem = particle_def_problem(def); !problem.empty()) throw InputError(problem);
+  SplitMix64 rng{def.seed};
+
+  Waves form;  // 1. low-order irregularity of the overall form
+  for (int k = 0; k < 6; ++k) form.add(rng, rng.uniform(1.0, 3.0), 0.08 / 3.0);
+  const Vec3 axes(1.0, def.elongation, def.elongation * def.flatness);
+
+  const int cuts = def.angularity > 0 ? static_cast<int>(std::lround(4.0 + 16.0 * def.angularity)) : 0;
+  std::vector<Vec3> normal(cuts);
+  std::vector<double> depth(cuts);
+  for (int k = 0; k < cuts; ++k) {
+    normal[k] = rng.unit_vector();
+    depth[k] = 0.3 * def.angularity * rng.uniform(0.3, 1.0);
+  }
+
+  Waves rough;  // 3. multi-scale roughness
+  for (int j = 0; j < 5; ++j)
+    for (int w = 0; w < 4; ++w) rough.add(rng, 4.0 * std::pow(2.0, j), 0.04 * def.roughness * std::pow(2.0, -0.8 * j) / 2.0);
+
+  const int n = static_cast<int>(std::lround(std::sqrt(static_cast<double>(particle_face_count(def.faces)) / 20.0)));
+  std::vector<Vec3> u;
+  std::vector<std::array<int, 3>> tris;
+  geodesic_sphere(n, u, tris);
+
+  std::vector<Vec3> x(u.size());
+  for (std::size_t i = 0; i < u.size(); ++i) x[i] = axes.cwiseProduct(u[i]) * (1.0 + form(u[i]));
+  for (int k = 0; k < cuts; ++k) {  // 2. planar cuts, each against the body cut so far
+    double support = 0;
+    for (const Vec3& p : x) support = std::max(support, normal[k].dot(p));
+    const double d = (1.0 - depth[k]) * support;
+    for (Vec3& p : x) {
+      const double h = normal[k].dot(p);
+      if (h > d) p *= d / h;
+    }
+  }
+  for (std::size_t i = 0; i < u.size(); ++i) x[i] *= 1.0 + rough(u[i]);
+
+  SurfaceMesh mesh;
+  mesh.vertices.resize(3, static_cast<Eigen::Index>(x.size()));
+  for (std::size_t i = 0; i < x.size(); ++i) mesh.vertices.col(static_cast<Eigen::Index>(i)) = x[i];
+  mesh.faces.resize(3, static_cast<Eigen::Index>(tris.size()));
+  for (std::size_t i = 0; i < tris.size(); ++i)
+    for (int c = 0; c < 3; ++c) mesh.faces(c, static_cast<Eigen::Index>(i)) = tris[i][c];
+
+  const MassProperties m = mass_properties(mesh);  // 4. centroid at the origin, exact size
+  const double scale = def.size / (2.0 * m.equivalent_radius);
+  mesh.vertices = scale * (mesh.vertices.colwise() - m.centroid);
+  return mesh;
+}
+
+}  // namespace asperity::geometry

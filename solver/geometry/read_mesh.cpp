@@ -1,0 +1,178 @@
+// Reading surface meshes with CGAL's stream I/O; the checks before and after it turn every kind of
+// bad file into one line naming the file and the defect (issue 3, "Reading").
+#include "geometry/read_mesh.hpp"
+
+#include <algorithm>
+#include <array>
+#include <cctype>
+#include <cmath>
+#include <cstdint>
+#include <cstring>
+#include <fstream>
+#include <sstream>
+#include <string>
+
+#include <CGAL/Exact_predicates_inexact_constructions_kernel.h>
+#include <CGAL/IO/OBJ.h>
+#include <CGAL/IO/OFF.h>
+#include <CGAL/IO/PLY.h>
+#include <CGAL/IO/STL.h>
+
+#include "core/error.hpp"
+
+namespace asperity::geometry {
+namespace {
+namespace fs = std::filesystem;
+using Kernel = CGAL::Exact_predicates_inexact_constructions_kernel;
+using Point = Kernel::Point_3;
+
+[[noreturn]] void fail(const fs::path& file, const std::string& problem) {
+  throw InputError(file.string() + ": " + problem);
+}
+
+std::string lower(std::string s) {
+  std::transform(s.begin(), s.end(), s.begin(), [](unsigned char c) { return std::tolower(c); });
+  return s;
+}
+
+std::string read_head(const fs::path& file, std::size_t n) {
+  std::ifstream in(file, std::ios::binary);
+  std::string head(n, '\0');
+  in.read(head.data(), static_cast<std::streamsize>(n));
+  head.resize(static_cast<std::size_t>(in.gcount()));
+  return head;
+}
+
+// What the first bytes look like, to turn "does not parse" into "wrong extension?".
+std::string sniff_format(const std::string& head) {
+  std::size_t i = 0;
+  while (i < head.size() && std::isspace(static_cast<unsigned char>(head[i]))) ++i;
+  const std::string h = lower(head.substr(i, 8));
+  if (h.rfind("ply", 0) == 0) return "PLY";
+  if (h.rfind("solid", 0) == 0) return "ASCII STL";
+  if (h.rfind("off", 0) == 0 || h.rfind("coff", 0) == 0 || h.rfind("noff", 0) == 0) return "OFF";
+  if (h.rfind("v ", 0) == 0 || h.rfind("# ", 0) == 0 || h.rfind("o ", 0) == 0 || h.rfind("mtllib", 0) == 0)
+    return "OBJ";
+  return "";
+}
+
+// Binary STL: 80-byte header, uint32 triangle count, 50 bytes per triangle. A file that does not
+// start with "solid", or whose size matches that layout, is binary; its size must hold every
+// declared triangle (CGAL would otherwise fail without saying why).
+void check_binary_stl_size(const fs::path& file, std::uintmax_t size) {
+  const std::string head = read_head(file, 84);
+  const bool says_solid = lower(head.substr(0, 5)) == "solid";
+  if (size < 84) {
+    if (says_solid) return;  // a short ASCII file; the parser decides
+    fail(file, "truncated binary STL: " + std::to_string(size) +
+                   " bytes, shorter than the 84-byte header");
+  }
+  std::uint32_t count = 0;
+  std::memcpy(&count, head.data() + 80, 4);  // little-endian on every platform we build for
+  const std::uintmax_t expected = 84 + 50 * static_cast<std::uintmax_t>(count);
+  if (size == expected) return;
+  if (says_solid) return;  // ASCII
+  if (size < expected) {
+    fail(file, "truncated binary STL: header declares " + std::to_string(count) + " triangles (" +
+                   std::to_string(expected) + " bytes) but the file has " + std::to_string(size) +
+                   " bytes (" + std::to_string((size - 84) / 50) + " whole triangles)");
+  }
+}
+
+// Literal nan/inf tokens in a text file: the stream parsers stop at them, so say so.
+std::size_t count_nonfinite_tokens(const fs::path& file) {
+  std::ifstream in(file);
+  std::string token;
+  std::size_t n = 0;
+  while (in >> token) {
+    const std::string t = lower(token);
+    const std::size_t s = (!t.empty() && (t[0] == '-' || t[0] == '+')) ? 1 : 0;
+    if (t.compare(s, 3, "nan") == 0 || t.compare(s, 3, "inf") == 0) ++n;
+  }
+  return n;
+}
+
+}  // namespace
+
+PolygonSoup read_mesh_file(const fs::path& file, const ReadOptions& options) {
+  if (!(options.scale > 0) || !std::isfinite(options.scale)) {
+    std::ostringstream s;
+    s << "scale must be a positive finite number (got " << options.scale << ")";
+    fail(file, s.str());
+  }
+  std::error_code ec;
+  if (!fs::is_regular_file(file, ec)) fail(file, "cannot open file (missing or not a regular file)");
+  const std::uintmax_t size = fs::file_size(file, ec);
+  if (ec) fail(file, "cannot open file");
+  if (size == 0) fail(file, "empty file (0 bytes)");
+
+  const std::string ext = lower(file.extension().string());
+  std::vector<Point> points;
+  std::vector<std::vector<std::size_t>> polygons;
+  bool ok = false;
+  std::string format;
+  const std::string name = file.string();
+  if (ext == ".stl") {
+    format = "STL";
+    check_binary_stl_size(file, size);
+    ok = CGAL::IO::read_STL(name, points, polygons);
+  } else if (ext == ".obj") {
+    format = "OBJ";
+    ok = CGAL::IO::read_OBJ(name, points, polygons);
+  } else if (ext == ".ply") {
+    format = "PLY";
+    ok = CGAL::IO::read_PLY(name, points, polygons);
+  } else if (ext == ".off") {
+    format = "OFF";
+    ok = CGAL::IO::read_OFF(name, points, polygons);
+  } else {
+    const std::string looks = sniff_format(read_head(file, 64));
+    fail(file, "unknown mesh format \"" + file.extension().string() +
+                   "\" (expected .stl, .obj, .ply or .off" +
+                   (looks.empty() ? ")" : "; the content looks like " + looks + ")"));
+  }
+  if (!ok) {
+    if (const std::size_t bad = count_nonfinite_tokens(file); bad > 0 && format != "STL") {
+      fail(file, std::to_string(bad) + " NaN or infinite coordinate values");
+    }
+    const std::string looks = sniff_format(read_head(file, 64));
+    std::string hint;
+    if (!looks.empty() && looks.find(format) == std::string::npos) {
+      hint = " (the content looks like " + looks + "; wrong extension?)";
+    }
+    fail(file, "not a valid " + format + " file: the " + format + " reader failed" + hint);
+  }
+  if (polygons.empty()) fail(file, "no faces (" + std::to_string(points.size()) + " vertices)");
+
+  PolygonSoup soup;
+  soup.points.resize(3, static_cast<Eigen::Index>(points.size()));
+  std::size_t nonfinite = 0;
+  for (std::size_t i = 0; i < points.size(); ++i) {
+    const Eigen::Vector3d p(points[i].x(), points[i].y(), points[i].z());
+    if (!p.allFinite()) ++nonfinite;
+    soup.points.col(static_cast<Eigen::Index>(i)) = options.scale * p;
+  }
+  if (nonfinite > 0) {
+    fail(file, std::to_string(nonfinite) + " vertices with NaN or infinite coordinates");
+  }
+  soup.polygons.reserve(polygons.size());
+  std::size_t bad_index = 0, too_small = 0;
+  for (const auto& poly : polygons) {
+    if (poly.size() < 3) ++too_small;
+    std::vector<int> out;
+    out.reserve(poly.size());
+    for (std::size_t v : poly) {
+      if (v >= points.size()) ++bad_index;
+      out.push_back(static_cast<int>(v));
+    }
+    soup.polygons.push_back(std::move(out));
+  }
+  if (bad_index > 0) {
+    fail(file, std::to_string(bad_index) + " face vertex indices out of range (the file has " +
+                   std::to_string(points.size()) + " vertices)");
+  }
+  if (too_small > 0) fail(file, std::to_string(too_small) + " faces with fewer than 3 vertices");
+  return soup;
+}
+
+}  // namespace asperity::geometry

@@ -1,0 +1,29 @@
+// Reading surface meshes from STL (ASCII and binary), OBJ, PLY (ASCII and binary) and OFF into a
+// polygon soup, with one-line errors that name the file and the defect.
+#pragma once
+
+#include <filesystem>
+#include <vector>
+
+#include <Eigen/Core>
+
+namespace asperity::geometry {
+
+// What a file holds before any check: points and polygons (vertex indices), as read.
+struct PolygonSoup {
+  Eigen::Matrix3Xd points;                // m (after the scale factor)
+  std::vector<std::vector<int>> polygons;  // vertex indices, any size ≥ 3
+};
+
+struct ReadOptions {
+  double scale = 1.0;  // multiplies every coordinate: 1e-3 for a mesh in millimetres
+};
+
+// Reads FILE by its extension (.stl, .obj, .ply, .off, any case). Throws InputError
+// "FILE: problem" for: a missing or empty file, an unknown extension, a truncated binary STL
+// (declared against actual triangle count), content that does not parse as the format (with a
+// hint when it looks like another format), NaN or infinite coordinates (with their count), a
+// polygon index out of range, a file with no faces, and a scale that is not positive and finite.
+PolygonSoup read_mesh_file(const std::filesystem::path& file, const ReadOptions& options = {});
+
+}  // namespace asperity::geometry

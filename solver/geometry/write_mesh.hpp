@@ -1,0 +1,24 @@
+// Writing surfaces and tetrahedral meshes, each file atomically (temporary file, then rename),
+// so an interrupted run never leaves a half-written file that looks complete.
+#pragma once
+
+#include <filesystem>
+#include <functional>
+#include <iosfwd>
+
+#include "core/mesh.hpp"
+
+namespace asperity::geometry {
+
+// Writes through `fill` into FILE.partial-PID, then renames it to FILE. Throws
+// std::runtime_error naming the file when it cannot be written.
+void write_atomically(const std::filesystem::path& file, const std::function<void(std::ostream&)>& fill);
+
+// By extension: .off, .obj, .ply (ASCII) with 17 significant digits (doubles round-trip
+// exactly), or .stl (binary, 32-bit floats as the format has). InputError for any other.
+void write_surface_mesh(const std::filesystem::path& file, const SurfaceMesh& mesh);
+
+// Legacy VTK unstructured grid (ASCII), cell type 10 (VTK_TETRA): opens in ParaView.
+void write_vtk_tets(const std::filesystem::path& file, const TetMesh& mesh);
+
+}  // namespace asperity::geometry
