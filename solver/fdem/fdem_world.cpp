@@ -274,7 +274,9 @@ World make_world(const WorldDef& def) {
     }
     Body body{.name = d.name, .kind = d.kind, .node_begin = offset, .node_end = offset + nn,
               .young = d.material.young};
-    young_max = std::max(young_max, d.material.young);
+    // The penalty scales with the bodies that deform or move; a fixed block only supplies the
+    // target (a stiff steel block must not shrink the step of a softer rock particle).
+    if (d.kind != BodyKind::fixed) young_max = std::max(young_max, d.material.young);
     w.x.middleCols(offset, nn) = d.mesh.nodes;
     for (int i = offset; i < offset + nn; ++i) w.node_body[i] = static_cast<int>(bi);
     const Eigen::Matrix4Xi tets = d.mesh.tets.array() + offset;
@@ -353,6 +355,9 @@ World make_world(const WorldDef& def) {
   w.surface_tets = Eigen::Map<const Eigen::Matrix4Xi>(st_nodes.data(), 4,
                                                       static_cast<Eigen::Index>(st_body.size()));
   w.surface_tet_body = std::move(st_body);
+  if (young_max == 0) {
+    for (const BodyDef& d : def.bodies) young_max = std::max(young_max, d.material.young);
+  }
   w.penalty = def.contact.penalty > 0 ? def.contact.penalty : def.contact.alpha * young_max;
   w.friction = def.contact.friction;
 

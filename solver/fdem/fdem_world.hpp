@@ -30,7 +30,8 @@ struct BodyDef {
 
 // Penalty contact parameters (contact/munjiza_potential.hpp).
 struct ContactDef {
-  // p = alpha · E (E the largest Young's modulus among the bodies) unless `penalty` > 0.
+  // p = alpha · E (E the largest Young's modulus among the bodies that are not fixed) unless
+  // `penalty` > 0.
   // α = 10: the penetration of a layer of elements pressed together is E/p = 1/10 of their own
   // elastic shortening (Munjiza 2004, eqs 2.56–2.57), while the penalty limits the step by about
   // √α = 3.2 (α = 100 would give 1 % at a 10× smaller step). Against a Hertz contact resolved by
