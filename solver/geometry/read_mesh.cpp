@@ -9,6 +9,8 @@
 #include <cstdint>
 #include <cstring>
 #include <fstream>
+#include <iostream>
+#include <optional>
 #include <sstream>
 #include <string>
 
@@ -92,6 +94,20 @@ std::size_t count_nonfinite_tokens(const fs::path& file) {
   return n;
 }
 
+// CGAL's readers print their own diagnostics to std::cerr (e.g. the PLY reader's "incorrect file
+// format"); the contract allows one line on stderr, ours, so they are held while reading.
+class QuietCerr {
+ public:
+  QuietCerr() : saved_(std::cerr.rdbuf(sink_.rdbuf())) {}
+  ~QuietCerr() { std::cerr.rdbuf(saved_); }
+  QuietCerr(const QuietCerr&) = delete;
+  QuietCerr& operator=(const QuietCerr&) = delete;
+
+ private:
+  std::ostringstream sink_;
+  std::streambuf* saved_;
+};
+
 }  // namespace
 
 PolygonSoup read_mesh_file(const fs::path& file, const ReadOptions& options) {
@@ -112,6 +128,7 @@ PolygonSoup read_mesh_file(const fs::path& file, const ReadOptions& options) {
   bool ok = false;
   std::string format;
   const std::string name = file.string();
+  std::optional<QuietCerr> quiet(std::in_place);
   if (ext == ".stl") {
     format = "STL";
     check_binary_stl_size(file, size);
@@ -131,6 +148,7 @@ PolygonSoup read_mesh_file(const fs::path& file, const ReadOptions& options) {
                    "\" (expected .stl, .obj, .ply or .off" +
                    (looks.empty() ? ")" : "; the content looks like " + looks + ")"));
   }
+  quiet.reset();
   if (!ok) {
     if (const std::size_t bad = count_nonfinite_tokens(file); bad > 0 && format != "STL") {
       fail(file, std::to_string(bad) + " NaN or infinite coordinate values");

@@ -1,0 +1,104 @@
+// Simplification to exact face counts and tetrahedralization that keeps the surface (issue 3).
+#include <algorithm>
+#include <array>
+#include <cmath>
+#include <set>
+
+#include <gtest/gtest.h>
+
+#include "core/error.hpp"
+#include "geometry/mass_properties.hpp"
+#include "geometry/mesh_pipeline.hpp"
+#include "geometry/random_particle.hpp"
+#include "geometry/repair_mesh.hpp"
+#include "geometry/simplify_edge_collapse.hpp"
+#include "geometry/tet_quality.hpp"
+#include "geometry/tetrahedralize.hpp"
+#include "mesh_fixtures.hpp"
+
+namespace asperity::geometry {
+namespace {
+
+// Σ tet volumes against the surface volume: both are sums of the same exact polyhedral volume,
+// in different pieces; 1e-12 relative is round-off over ~10⁴ terms.
+constexpr double kVolumeRoundOff = 1e-12;
+
+const SurfaceMesh& particle() {
+  static const SurfaceMesh p = random_particle({.seed = 11, .faces = 20480});
+  return p;
+}
+
+void expect_tets_keep_surface(const SurfaceMesh& s, const TetMesh& t) {
+  EXPECT_EQ(t.surface, s.faces);
+  EXPECT_EQ(t.nodes.leftCols(s.vertices.cols()), s.vertices);
+  const TetQuality q = tet_quality(t);
+  EXPECT_GT(q.min_volume, 0.0);  // every tetrahedron positively oriented
+  const double v = mass_properties(s).volume;
+  EXPECT_NEAR(q.volume_sum, v, kVolumeRoundOff * v);
+  EXPECT_GT(q.min_dihedral_deg, 0.0);
+  EXPECT_GT(q.smallest_edge, 0.0);
+}
+
+TEST(Simplify, ExactFaceCountsStayValid) {
+  const MassProperties source = mass_properties(particle());
+  for (long n : {100L, 250L, 500L, 1000L, 2000L, 5000L}) {
+    SCOPED_TRACE(n);
+    const SurfaceMesh s = simplify_edge_collapse(particle(), n);
+    EXPECT_EQ(s.faces.cols(), n);
+    EXPECT_EQ(s.vertices.cols(), n / 2 + 2);  // Euler, one genus-0 shell: F = 2V − 4
+    const MeshCheck c = check_mesh(s, true);
+    EXPECT_TRUE(c.closed());
+    EXPECT_TRUE(c.manifold());
+    EXPECT_EQ(c.shells, 1);
+    EXPECT_EQ(c.misoriented_edges, 0);
+    EXPECT_GT(c.volume, 0.0);  // outward
+    EXPECT_EQ(c.self_intersections, 0);
+    // Lindstrom–Turk keeps the volume to first order per collapse; 1e-3 is generous for 20k → 100.
+    EXPECT_NEAR(c.volume / source.volume, 1.0, 1e-3);
+  }
+}
+
+TEST(Simplify, ImpossibleTargetsAreInputErrors) {
+  EXPECT_THROW(simplify_edge_collapse(particle(), 101), InputError);
+  EXPECT_THROW(simplify_edge_collapse(particle(), 2), InputError);
+  EXPECT_THROW(simplify_edge_collapse(particle(), 20482), InputError);
+  EXPECT_NE(face_target_problem(101, 1000).find("faces must be even"), std::string::npos);
+  EXPECT_EQ(face_target_problem(100, 1000), "");
+  EXPECT_EQ(simplify_edge_collapse(particle(), 20480).faces, particle().faces);  // N = input: unchanged
+}
+
+TEST(Tetrahedralize, CubeKeepsItsTwelveTriangles) {
+  const SurfaceMesh cube = test::unit_cube();
+  const TetMesh t = tetrahedralize(cube, {.radius_edge_ratio = 0});
+  expect_tets_keep_surface(cube, t);
+  EXPECT_EQ(t.nodes.cols(), 8);  // no quality refinement: no interior points needed
+}
+
+TEST(Tetrahedralize, SimplifiedParticlesKeepTheirSurface) {
+  for (long n : {100L, 500L, 1000L}) {
+    SCOPED_TRACE(n);
+    const SurfaceMesh s = simplify_edge_collapse(particle(), n);
+    expect_tets_keep_surface(s, tetrahedralize(s));
+    expect_tets_keep_surface(s, tetrahedralize(s, {.radius_edge_ratio = 0}));
+  }
+}
+
+TEST(Pipeline, FromMemoryReportsTheContractKeys) {
+  const PreparedParticle p = prepare_particle(particle(), "seed 11", {.faces = 250});
+  const nlohmann::json j = mesh_report(p);
+  for (const char* key : {"faces", "vertices", "closed", "volume", "centroid", "tets", "tet_volume", "min_dihedral_deg",
+                          "volume_change_rel", "centroid_shift_rel", "max_asperity_rel", "repairs", "smallest_edge",
+                          "inertia", "principal_moments", "equivalent_radius", "elongation", "flatness"}) {
+    EXPECT_TRUE(j.contains(key)) << key;
+  }
+  EXPECT_EQ(j["faces"], 250);
+  EXPECT_EQ(j["closed"], true);
+  EXPECT_NEAR(j["tet_volume"].get<double>(), j["volume"].get<double>(), kVolumeRoundOff * j["volume"].get<double>());
+  // The generated particle is centred at the origin; simplification moves its centroid by a
+  // fraction of the radius (here the order of the removed detail, well under 1 %).
+  EXPECT_LT(j["centroid_shift_rel"].get<double>(), 1e-2);
+  EXPECT_TRUE(j["repairs"].empty());
+}
+
+}  // namespace
+}  // namespace asperity::geometry
