@@ -16,6 +16,7 @@
 #include "dem/sphere_world.hpp"
 #include "dem/time_step.hpp"
 #include "run/impact_measures.hpp"
+#include "run/run_fdem.hpp"
 #include "run/rebound.hpp"
 
 namespace asperity::run {
@@ -141,6 +142,7 @@ double cpu_seconds() { return static_cast<double>(std::clock()) / CLOCKS_PER_SEC
 }  // namespace
 
 RunResult run_scene(const scene::SceneDef& s, const RunOptions& options) {
+  if (is_fdem_scene(s)) return run_fdem(s, options);  // mesh bodies: the FEM/DEM path
   const std::string where = s.file.string() + ": ";
   dem::SphereWorld w = build_sphere_world(s);
   const dem::CriticalStep crit = dem::critical_step(w);

@@ -1,0 +1,374 @@
+// Scene → FEM/DEM world → time loop → measures, for mesh bodies (fdem/fdem_world.hpp).
+#include "run/run_fdem.hpp"
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <cstdio>
+#include <ctime>
+#include <optional>
+#include <sstream>
+
+#include "contact/munjiza_potential.hpp"
+#include "core/error.hpp"
+#include "fdem/fdem_world.hpp"
+#include "fdem/structured_mesh.hpp"
+#include "fdem/time_step.hpp"
+#include "run/impact_measures.hpp"
+#if ASPERITY_HAVE_GEOMETRY
+#include "geometry/mesh_pipeline.hpp"
+#endif
+
+namespace asperity::run {
+namespace {
+
+std::string fmt(double x) {
+  std::ostringstream s;
+  s.precision(6);
+  s << x;
+  return s.str();
+}
+
+// The stability sweep's "dt = factor × predicted critical step", read where RunOptions carries it
+// (RunOptions::dt_factor lands with the stability command).
+template <class Options>
+std::optional<double> dt_factor(const Options& o) {
+  if constexpr (requires { o.dt_factor; }) {
+    return o.dt_factor;
+  } else {
+    return std::nullopt;
+  }
+}
+
+double cpu_seconds() { return static_cast<double>(std::clock()) / CLOCKS_PER_SEC; }
+
+// The scene default dt_safety (0.01) is the sphere DEM's: it resolves a Hertz contact in ~200
+// steps. Here the step is set by element and penalty stiffness, each contact spans thousands of
+// steps at the critical one, and the bound is already conservative (element eigenvalue and
+// Gershgorin bounds), so the FEM/DEM default is 0.5 unless the scene gives its own factor.
+constexpr double kFdemSafety = 0.5;
+
+TetMesh mesh_body(const scene::MeshShape& m, const std::string& key) {
+#if ASPERITY_HAVE_GEOMETRY
+  geometry::PipelineOptions o;
+  o.faces = m.faces;
+  o.read.scale = m.scale;
+  o.tetrahedralize = true;
+  (void)key;
+  return geometry::prepare_particle(m.file, o).tets;
+#else
+  (void)m;
+  throw InputError(key + "shape: mesh bodies need the geometry pipeline (solver/geometry), "
+                         "which is not in this build");
+#endif
+}
+
+TetMesh centred_at(TetMesh m, const Vec3& position) {
+  double vol = 0;
+  Vec3 first = Vec3::Zero();
+  for (Eigen::Index k = 0; k < m.tets.cols(); ++k) {
+    const Vec3 a = m.nodes.col(m.tets(0, k)), b = m.nodes.col(m.tets(1, k)),
+               c = m.nodes.col(m.tets(2, k)), d = m.nodes.col(m.tets(3, k));
+    const double v = (b - a).cross(c - a).dot(d - a) / 6;
+    vol += v;
+    first += v * 0.25 * (a + b + c + d);
+  }
+  m.nodes.colwise() += position - first / vol;
+  return m;
+}
+
+struct Built {
+  fdem::WorldDef def;
+  std::vector<int> scene_body;  // world body → scene body
+};
+
+Built build(const scene::SceneDef& s) {
+  const std::string where = s.file.string() + ": ";
+  if (s.contact.law != scene::ContactLaw::potential) {
+    throw InputError(where + "contact.law: mesh bodies collide through \"potential\" (Munjiza's "
+                             "distributed potential); set contact.law to \"potential\"");
+  }
+  if (s.contact.restitution) {
+    throw InputError(where + "contact.restitution: the potential law is elastic (energy is "
+                             "lost only to friction and element damping); remove the key");
+  }
+  Built out;
+  double friction = 1e300;
+  std::vector<std::pair<int, const scene::PlaneShape*>> planes;
+  Eigen::AlignedBox3d extent;
+  for (std::size_t b = 0; b < s.bodies.size(); ++b) {
+    const scene::BodyDef& body = s.bodies[b];
+    const std::string key = where + "bodies[" + std::to_string(b) + "] \"" + body.name + "\": ";
+    const Material& mat = s.materials[body.material];
+    friction = std::min(friction, mat.friction);
+    fdem::BodyDef d{.name = body.name, .material = mat};
+    if (const auto* mesh = std::get_if<scene::MeshShape>(&body.shape)) {
+      d.mesh = centred_at(mesh_body(*mesh, key), body.position);
+      d.kind = body.fixed ? fdem::BodyKind::fixed
+                          : (body.model == scene::Model::fem ? fdem::BodyKind::deformable
+                                                             : fdem::BodyKind::rigid);
+      if (!body.fixed) {
+        d.velocity = body.velocity;
+        d.angular_velocity = body.angular_velocity;
+      }
+    } else if (const auto* box = std::get_if<scene::BoxShape>(&body.shape)) {
+      // A fixed block: its box as six tetrahedra with fixed nodes, the same potential target as
+      // any element.
+      d.kind = fdem::BodyKind::fixed;
+      d.mesh = fdem::box_mesh(box->min, box->max, 1, 1, 1);
+    } else if (const auto* plane = std::get_if<scene::PlaneShape>(&body.shape)) {
+      planes.emplace_back(static_cast<int>(b), plane);
+      continue;  // sized once every other body is known
+    } else {
+      throw InputError(key + "shape: spheres cannot share a scene with mesh bodies (mesh the "
+                             "sphere: shape \"mesh\")");
+    }
+    for (Eigen::Index i = 0; i < d.mesh.nodes.cols(); ++i) extent.extend(d.mesh.nodes.col(i));
+    out.def.bodies.push_back(std::move(d));
+    out.scene_body.push_back(static_cast<int>(b));
+  }
+  for (const auto& [b, plane] : planes) {
+    // A plane becomes a fixed slab under it, wide and deep enough that nothing in the scene can
+    // reach its edges: half-width and depth 4× the largest distance of any node from the plane's
+    // point (plus 1 m when the scene is a single point).
+    double reach = 1.0;
+    if (!extent.isEmpty()) {
+      for (int c = 0; c < 8; ++c) {
+        reach = std::max(reach, (extent.corner(static_cast<Eigen::AlignedBox3d::CornerType>(c)) - plane->point).norm());
+      }
+    }
+    const Vec3 n = plane->normal.normalized();
+    const Vec3 t1 = n.unitOrthogonal(), t2 = n.cross(t1);
+    Mat3 frame;
+    frame << t1, t2, n;
+    const double l = 4 * reach;
+    fdem::BodyDef d{.name = s.bodies[b].name,
+                    .kind = fdem::BodyKind::fixed,
+                    .mesh = fdem::oriented_box_mesh(plane->point, frame, Vec3(-l, -l, -l), Vec3(l, l, 0), 1, 1, 1),
+                    .material = s.materials[s.bodies[b].material]};
+    out.def.bodies.push_back(std::move(d));
+    out.scene_body.push_back(b);
+  }
+  out.def.gravity = s.gravity;
+  out.def.contact.penalty = s.contact.penalty.value_or(0.0);
+  // Coulomb μ: the scene's, else the smallest of the bodies' materials (as pair_friction does
+  // for a pair).
+  out.def.contact.friction = s.contact.friction.value_or(friction);
+  for (std::size_t i = 0; i < out.scene_body.size(); ++i) {
+    if (out.scene_body[i] == s.record.body) out.def.record_body = static_cast<int>(i);
+  }
+  return out;
+}
+
+const char* kind_name(fdem::BodyKind k) {
+  switch (k) {
+    case fdem::BodyKind::deformable: return "fem";
+    case fdem::BodyKind::rigid: return "rigid";
+    case fdem::BodyKind::fixed: return "fixed";
+  }
+  return "?";
+}
+
+}  // namespace
+
+bool is_fdem_scene(const scene::SceneDef& s) {
+  if (s.contact.law == scene::ContactLaw::potential) return true;
+  return std::any_of(s.bodies.begin(), s.bodies.end(), [](const scene::BodyDef& b) {
+    return std::holds_alternative<scene::MeshShape>(b.shape);
+  });
+}
+
+RunResult run_fdem(const scene::SceneDef& s, const RunOptions& options) {
+  const std::string where = s.file.string() + ": ";
+  const Built built = build(s);
+  fdem::World w = fdem::make_world(built.def);
+  // No body may start inside another: the first step would fire it out with a spurious force.
+  if (w.contacts_touching > 0) {
+    for (const fdem::TetPair& p : w.pairs) {
+      const int a = w.surface_tet_body[p.a], b = w.surface_tet_body[p.b];
+      contact::TetNodes ta, tb;
+      for (int i = 0; i < 4; ++i) {
+        ta[i] = w.x.col(w.surface_tets(i, p.a));
+        tb[i] = w.x.col(w.surface_tets(i, p.b));
+      }
+      const auto c = contact::munjiza_potential(ta, tb, w.penalty, false);
+      if (c.touching()) {
+        throw InputError(where + "bodies \"" + w.bodies[a].name + "\" and \"" + w.bodies[b].name +
+                         "\": position: they start overlapping (by " + fmt(c.depth) + " m or more)");
+      }
+    }
+  }
+  const fdem::CriticalStep crit = fdem::critical_step(w);
+  if (!std::isfinite(crit.critical)) {
+    throw InputError(where + "bodies: nothing moves (every body is fixed)");
+  }
+
+  const double safety = s.dt_safety == scene::SceneDef{}.dt_safety ? kFdemSafety : s.dt_safety;
+  double dt = 0;
+  bool auto_dt = false;
+  if (const std::optional<double> factor = dt_factor(options)) {
+    dt = *factor * crit.critical;
+  } else if (const std::optional<double> given = options.dt ? options.dt : s.dt) {
+    dt = *given;
+    if (dt > crit.critical && !(options.allow_unsafe_dt || s.allow_unsafe_dt)) {
+      throw InputError(where + "dt: " + fmt(dt) + " s exceeds the predicted critical step " +
+                       fmt(crit.critical) + " s (limited by " + crit.limited_by +
+                       "); use \"auto\", a smaller dt, or allow_unsafe_dt: true");
+    }
+  } else {
+    dt = safety * crit.critical;
+    auto_dt = true;
+  }
+  const double n_steps_real = std::ceil(s.duration / dt - 1e-9);
+  if (n_steps_real > 2e9) {
+    throw InputError(where + "duration: " + fmt(s.duration) + " s needs " + fmt(n_steps_real) +
+                     " steps of " + fmt(dt) + " s (over 2e9)");
+  }
+  const long n_steps = static_cast<long>(n_steps_real);
+
+  // The partner whose velocity the restitution is measured against: the other free body when
+  // there are exactly two, else the fixed targets (velocity zero).
+  int partner = -1;
+  {
+    std::vector<int> free;
+    for (std::size_t b = 0; b < w.bodies.size(); ++b) {
+      if (w.bodies[b].kind != fdem::BodyKind::fixed) free.push_back(static_cast<int>(b));
+    }
+    if (free.size() == 2) partner = free[0] == w.record_body ? free[1] : free[0];
+  }
+  auto relative_velocity = [&] {
+    const Vec3 v = fdem::body_velocity(w, w.record_body);
+    return partner >= 0 ? Vec3(v - fdem::body_velocity(w, partner)) : v;
+  };
+
+  RunResult result;
+  const auto wall0 = std::chrono::steady_clock::now();
+  const double cpu0 = cpu_seconds();
+  ImpactMeasures im;
+  im.start(0, w.record_force, w.record_depth);
+  const fdem::EnergyTerms e0 = fdem::energy(w);
+  const double total0 = e0.total();
+  double energy_scale = e0.kinetic + e0.elastic + e0.contact;
+  double drift = 0;
+  auto push_rows = [&](const fdem::EnergyTerms& e) {
+    if (!options.keep_rows) return;
+    const Vec3& f = w.record_force;
+    result.force.push_back({w.time, f.x(), f.y(), f.z(), f.norm()});
+    result.energy.push_back({w.time, e.kinetic, e.elastic, e.contact, e.gravity, e.dissipated, e.total()});
+  };
+  push_rows(e0);
+  // Energy needs the contact energy integrals (extra clipping), so it is checked at most every
+  // 20 steps, and at every recorded row.
+  const long check_every = std::min(20, std::max(1, s.record.every));
+  Vec3 impulse = Vec3::Zero(), v_approach = Vec3::Zero(), v_separation = Vec3::Zero();
+  bool was_touching = im.touching, ended = false;
+  std::string unstable;
+  double last_progress = 0;
+  for (long k = 1; k <= n_steps && unstable.empty(); ++k) {
+    const bool row = k % s.record.every == 0 || k == n_steps;
+    w.want_energy = row || k % check_every == 0;
+    const Vec3 v_before = relative_velocity();
+    fdem::step(w, dt);
+    if (!w.failure.empty()) {
+      unstable = w.failure;
+      break;
+    }
+    im.add(w.time, w.record_force, w.record_depth);
+    impulse += w.record_force * dt;
+    if (!was_touching && im.touching && im.first_contact_time >= 0 && v_approach.isZero()) {
+      v_approach = v_before;
+    }
+    if (was_touching && !im.touching && !ended) {
+      v_separation = relative_velocity();
+      ended = true;
+    }
+    was_touching = im.touching;
+    if (w.want_energy) {
+      const fdem::EnergyTerms e = fdem::energy(w);
+      energy_scale = std::max(energy_scale, e.kinetic);
+      const double err = std::abs(e.total() - total0);
+      if (!std::isfinite(e.total()) || !w.x.allFinite()) {
+        unstable = "non-finite state at t = " + fmt(w.time) + " s";
+      } else if (energy_scale > 0) {
+        drift = std::max(drift, err / energy_scale);
+        if (e.total() - total0 > s.unstable_energy_growth * energy_scale) {
+          unstable = "energy grew by " + fmt((e.total() - total0) / energy_scale) +
+                     " of its scale at t = " + fmt(w.time) + " s";
+        }
+      }
+      if (row) push_rows(e);
+    }
+    if (options.progress && (k & 255) == 0) {
+      const double el = std::chrono::duration<double>(std::chrono::steady_clock::now() - wall0).count();
+      if (el - last_progress > 1.0) {
+        last_progress = el;
+        std::fprintf(stderr, "\r%s: %5.1f%%  step %ld/%ld  %.0f s left ", s.name.c_str(),
+                     100.0 * static_cast<double>(k) / static_cast<double>(n_steps), k, n_steps,
+                     el * static_cast<double>(n_steps - k) / static_cast<double>(k));
+      }
+    }
+  }
+  if (options.progress && last_progress > 0) std::fprintf(stderr, "\n");
+  const double cpu = cpu_seconds() - cpu0;
+  const double wall = std::chrono::duration<double>(std::chrono::steady_clock::now() - wall0).count();
+
+  if (!unstable.empty()) {
+    result.status = "unstable";
+    result.message = unstable;
+  } else if (im.first_contact_time < 0) {
+    result.status = "no_contact";
+  } else {
+    result.status = "ok";
+  }
+  using J = nlohmann::ordered_json;
+  auto& j = result.summary;
+  j["status"] = result.status;
+  if (!unstable.empty()) j["message"] = unstable;
+  j["scene"] = s.name;
+  j["model"] = "fdem";
+  j["contact_law"] = "potential";
+  j["recorded_body"] = s.bodies[s.record.body].name;
+  j["peak_force"] = im.peak_force;
+  j["impulse"] = im.impulse;
+  j["contact_duration"] = im.duration_until(w.time);
+  j["first_contact_time"] = im.first_contact_time < 0 ? J() : J(im.first_contact_time);
+  j["max_overlap"] = im.max_overlap;
+  // e = −(v_sep · n) / (v_app · n), n the direction of the recorded body's contact impulse,
+  // velocities of its centre of mass relative to the partner's, at the first contact's start and
+  // end.
+  const double in_speed = impulse.norm() > 0 ? -v_approach.dot(impulse.normalized()) : 0;
+  j["restitution"] = (ended && in_speed > 0) ? J(v_separation.dot(impulse.normalized()) / in_speed) : J();
+  j["energy_drift"] = drift;
+  j["dt"] = dt;
+  j["dt_critical_predicted"] = crit.critical;
+  j["dt_element"] = std::isfinite(crit.element) ? J(crit.element) : J();
+  j["dt_contact"] = std::isfinite(crit.contact) ? J(crit.contact) : J();
+  j["dt_limited_by"] = crit.limited_by;
+  j["dt_safety"] = auto_dt ? J(safety) : J();
+  j["penalty"] = w.penalty;
+  j["penalty_alpha"] = s.contact.penalty ? J() : J(built.def.contact.alpha);
+  j["friction"] = w.friction;
+  j["steps"] = w.steps;
+  j["simulated_time"] = w.time;
+  j["cpu_seconds"] = cpu;
+  j["wall_seconds"] = wall;
+  j["profile"] = {{"broad_phase", w.profile.broad_phase},
+                  {"contact", w.profile.contact},
+                  {"internal_forces", w.profile.internal},
+                  {"integrate", w.profile.integrate}};
+  j["neighbour_rebuilds"] = w.rebuilds;
+  j["contact_evaluations"] = w.contact_evaluations;
+  j["contacts_touching"] = w.contacts_touching;
+  J bodies = J::array();
+  for (const fdem::Body& b : w.bodies) {
+    J e = {{"name", b.name}, {"model", kind_name(b.kind)}, {"nodes", b.node_end - b.node_begin},
+           {"mass", b.mass}};
+    if (b.elements >= 0) e["tets"] = w.elements[b.elements].size();
+    bodies.push_back(e);
+  }
+  j["bodies"] = bodies;
+  j["surface_tets"] = w.surface_tets.cols();
+  return result;
+}
+
+}  // namespace asperity::run
