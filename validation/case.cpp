@@ -63,7 +63,7 @@ std::optional<double> summary_number(const nlohmann::ordered_json& summary, cons
 CaseDef load_case(const std::filesystem::path& file) {
   const io::Json json = io::read_json_file(file);
   const JsonReader r(json, file, "");
-  r.only_keys({"case", "description", "tags", "source", "scene", "expected"});
+  r.only_keys({"case", "description", "tags", "source", "scene", "sweep", "expected"});
   CaseDef c;
   c.file = file;
   c.name = r.string("case");
@@ -75,6 +75,20 @@ CaseDef load_case(const std::filesystem::path& file) {
   r.child("scene").require_object();
   c.scene = scene::parse_scene(json.at("scene"), file, "scene");
 
+  if (r.has("sweep")) {
+    const JsonReader sw = r.child("sweep");
+    sw.only_keys({"factors", "reference_factor"});
+    const JsonReader f = sw.child("factors");
+    std::vector<double> factors;
+    for (std::size_t i = 0; i < f.require_array(); ++i) {
+      const io::Json& x = f.value().at(i);
+      if (!x.is_number() || !(x.get<double>() > 0)) f.fail("", "factors must be positive numbers");
+      factors.push_back(x.get<double>());
+    }
+    if (factors.empty()) f.fail("", "empty list of factors");
+    c.sweep_factors = factors;
+    if (sw.has("reference_factor")) c.sweep_reference_factor = sw.positive("reference_factor");
+  }
   const JsonReader ex = r.child("expected");
   ex.require_object();
   std::optional<contact::HertzImpact> hertz;
@@ -90,7 +104,11 @@ CaseDef load_case(const std::filesystem::path& file) {
     }
     e.only_keys({"reference", "value", "rel_tol", "abs_tol", "max", "min", "why"});
     ch.why = e.string("why");
-    if (e.has("max")) {
+    if (e.has("max") && e.has("min")) {
+      ch.reference = "range";
+      ch.expected = e.number("min");
+      ch.upper = e.number("max");
+    } else if (e.has("max")) {
       ch.reference = "max";
       ch.expected = e.number("max");
     } else if (e.has("min")) {
@@ -115,7 +133,7 @@ CaseDef load_case(const std::filesystem::path& file) {
                                 "\"; expected hertz, target_restitution, or a value/max/min");
       }
     }
-    if (ch.reference != "max" && ch.reference != "min") {
+    if (ch.reference != "max" && ch.reference != "min" && ch.reference != "range") {
       if (!e.has("rel_tol") && !e.has("abs_tol")) e.fail("", "needs rel_tol or abs_tol");
       ch.rel_tol = e.number_or("rel_tol", 0);
       ch.abs_tol = e.number_or("abs_tol", 0);
@@ -141,7 +159,15 @@ std::vector<std::filesystem::path> find_cases(const std::filesystem::path& path)
 CaseResult run_case(const CaseDef& def) {
   CaseResult r;
   r.def = def;
-  r.run = run::run_scene(def.scene);
+  if (def.sweep_factors) {
+    const run::StabilityResult sweep =
+        run::stability_sweep(def.scene, *def.sweep_factors, def.sweep_reference_factor);
+    r.run.status = "ok";
+    r.run.summary = sweep.summary;
+    r.sweep = sweep;
+  } else {
+    r.run = run::run_scene(def.scene);
+  }
   r.passed = true;
   for (const Check& ch : def.checks) {
     CheckResult cr;
@@ -152,7 +178,8 @@ CaseResult run_case(const CaseDef& def) {
       cr.passed = cr.got_text == ch.text;
     } else if (auto got = summary_number(r.run.summary, ch.quantity)) {
       cr.got = *got;
-      if (ch.reference == "max") cr.passed = cr.got <= ch.expected;
+      if (ch.reference == "range") cr.passed = cr.got >= ch.expected && cr.got <= ch.upper;
+      else if (ch.reference == "max") cr.passed = cr.got <= ch.expected;
       else if (ch.reference == "min") cr.passed = cr.got >= ch.expected;
       else cr.passed = std::abs(cr.got - ch.expected) <= ch.rel_tol * std::abs(ch.expected) + ch.abs_tol;
     } else {
@@ -182,7 +209,8 @@ nlohmann::ordered_json to_json(const CaseResult& r) {
     } else {
       k["expected"] = c.check.expected;
       k["got"] = std::isfinite(c.got) ? nlohmann::ordered_json(c.got) : nlohmann::ordered_json();
-      if (c.check.reference != "max" && c.check.reference != "min") {
+      if (c.check.reference == "range") k["upper"] = c.check.upper;
+      if (c.check.reference != "max" && c.check.reference != "min" && c.check.reference != "range") {
         k["rel_error"] = c.check.expected != 0 ? (c.got - c.check.expected) / std::abs(c.check.expected)
                                                : c.got - c.check.expected;
         k["rel_tol"] = c.check.rel_tol;

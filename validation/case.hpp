@@ -3,12 +3,14 @@
 #pragma once
 
 #include <filesystem>
+#include <optional>
 #include <string>
 #include <vector>
 
 #include <nlohmann/json.hpp>
 
 #include "run/run_scene.hpp"
+#include "run/stability_sweep.hpp"
 #include "scene/scene.hpp"
 
 namespace asperity::validation {
@@ -16,8 +18,9 @@ namespace asperity::validation {
 // One expectation on a summary.json quantity.
 struct Check {
   std::string quantity;   // a summary.json key, e.g. "peak_force"
-  std::string reference;  // "value", "hertz", "target_restitution", "max", "min", "equals"
-  double expected = 0;    // resolved reference value
+  std::string reference;  // "value", "hertz", "target_restitution", "max", "min", "range", "equals"
+  double expected = 0;    // resolved reference value (the lower bound for "range")
+  double upper = 0;       // the upper bound for "range"
   double rel_tol = 0;     // |got − expected| ≤ rel_tol·|expected| + abs_tol
   double abs_tol = 0;
   std::string why;        // the tolerance's reason (and the reference's source)
@@ -30,6 +33,9 @@ struct CaseDef {
   std::string description;
   std::vector<std::string> tags;
   scene::SceneDef scene;
+  // A stability case sweeps the step (run/stability_sweep.hpp) and checks the sweep's summary.
+  std::optional<std::vector<double>> sweep_factors;
+  std::optional<double> sweep_reference_factor;
   std::vector<Check> checks;
 };
 
@@ -42,7 +48,8 @@ struct CheckResult {
 
 struct CaseResult {
   CaseDef def;
-  run::RunResult run;
+  run::RunResult run;                         // a sweep case: its summary is the sweep's
+  std::optional<run::StabilityResult> sweep;  // set for a sweep case
   std::vector<CheckResult> checks;
   bool passed = false;
 };

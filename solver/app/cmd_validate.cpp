@@ -10,6 +10,7 @@
 #include "case.hpp"
 #include "core/error.hpp"
 #include "run/run_scene.hpp"
+#include "run/stability_sweep.hpp"
 
 namespace asperity::app {
 namespace {
@@ -40,7 +41,11 @@ int cmd_validate(const std::vector<fs::path>& paths, const fs::path& out, bool q
   const auto t0 = std::chrono::steady_clock::now();
   for (std::size_t k = 0; k < cases.size(); ++k) {
     const validation::CaseResult r = validation::run_case(cases[k]);
-    run::write_outputs(r.run, out / "cases" / r.def.name);
+    if (r.sweep) {
+      run::write_stability(*r.sweep, out / "cases" / r.def.name);
+    } else {
+      run::write_outputs(r.run, out / "cases" / r.def.name);
+    }
     const nlohmann::ordered_json j = validation::to_json(r);
     {
       std::ofstream c(out / "cases" / r.def.name / "check.json");
@@ -89,7 +94,8 @@ int cmd_validate(const std::vector<fs::path>& paths, const fs::path& out, bool q
         if (c["abs_tol"].get<double>() != 0) t << " + " << c["abs_tol"].get<double>() << " abs";
         tol = t.str();
       } else {
-        tol = c["reference"].get<std::string>() == "max" ? "≤ expected" : (c["reference"].get<std::string>() == "min" ? "≥ expected" : "equal");
+        const std::string ref = c["reference"].get<std::string>();
+        tol = ref == "max" ? "≤ expected" : ref == "min" ? "≥ expected" : ref == "range" ? "≤ " + c["upper"].dump() : "equal";
       }
       std::ostringstream err;
       if (c.contains("rel_error") && c["rel_error"].is_number()) err.precision(3), err << c["rel_error"].get<double>();

@@ -64,8 +64,10 @@ CriticalStep critical_step(const SphereWorld& w) {
     }
     if (omega > 0) out.contact = 2 / omega * (std::sqrt(1 + xi * xi) - xi);
   }
-  out.critical = std::min(out.rayleigh, out.contact);
-  out.limited_by = out.contact < out.rayleigh ? "contact" : "rayleigh";
+  // Rigid spheres carry no elastic waves: the contact oscillator is the central-difference limit.
+  // The Rayleigh step (a packing heuristic) bounds the step only when no contact can be sized.
+  out.critical = std::isfinite(out.contact) ? out.contact : out.rayleigh;
+  out.limited_by = std::isfinite(out.contact) ? "contact" : "rayleigh";
   return out;
 }
 

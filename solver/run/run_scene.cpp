@@ -1,8 +1,6 @@
 // Scene → world → time loop → measures. The sphere DEM path (rigid spheres, planes, boxes).
 #include "run/run_scene.hpp"
 
-#include <unistd.h>
-
 #include <chrono>
 #include <cmath>
 #include <cstdio>
@@ -13,6 +11,7 @@
 
 #include "core/error.hpp"
 #include "core/ticks.hpp"
+#include "io/atomic_file.hpp"
 #include "dem/sphere_world.hpp"
 #include "dem/time_step.hpp"
 #include "run/impact_measures.hpp"
@@ -147,9 +146,15 @@ RunResult run_scene(const scene::SceneDef& s, const RunOptions& options) {
   dem::SphereWorld w = build_sphere_world(s);
   const dem::CriticalStep crit = dem::critical_step(w);
 
-  const std::optional<double> given = options.dt ? options.dt : s.dt;
+  const std::optional<double> given = options.dt_factor ? std::optional<double>(*options.dt_factor * crit.critical)
+                                      : (options.dt ? options.dt : s.dt);
   double dt = 0;
-  if (given) {
+  if (options.dt_factor && !std::isfinite(crit.critical)) {
+    throw InputError(where + "dt: no predicted critical step to scale (no free body)");
+  }
+  if (options.dt_factor) {
+    dt = *given;
+  } else if (given) {
     dt = *given;
     if (dt > crit.critical && !(options.allow_unsafe_dt || s.allow_unsafe_dt)) {
       throw InputError(where + "dt: " + fmt(dt) + " s exceeds the predicted critical step " +
@@ -196,7 +201,9 @@ RunResult run_scene(const scene::SceneDef& s, const RunOptions& options) {
     const bool row = k % s.record.every == 0 || k == n_steps;
     if (row || k % check_every == 0) {
       const dem::EnergyTerms e = dem::energy(w);
-      energy_scale = std::max(energy_scale, e.kinetic);
+      // The energy the physics can supply: the initial kinetic and contact energy plus what
+      // gravity has released so far. Growth beyond it is made by the integrator.
+      energy_scale = std::max(energy_scale, e0.kinetic + e0.contact + std::max(0.0, -e.gravity));
       const double err = std::abs(e.total() - total0);
       if (!std::isfinite(e.total()) || !w.x.allFinite()) {
         unstable = "non-finite state at t = " + fmt(w.time) + " s";
@@ -301,19 +308,7 @@ RunResult run_scene(const scene::SceneDef& s, const RunOptions& options) {
   return result;
 }
 
-namespace {
-void write_atomically(const std::filesystem::path& file, const std::string& text) {
-  const std::filesystem::path tmp = file.string() + ".partial-" + std::to_string(::getpid());
-  {
-    std::ofstream out(tmp, std::ios::binary | std::ios::trunc);
-    if (!out) throw std::runtime_error(tmp.string() + ": cannot write");
-    out << text;
-    out.flush();
-    if (!out) throw std::runtime_error(tmp.string() + ": write failed");
-  }
-  std::filesystem::rename(tmp, file);
-}
-}  // namespace
+using io::write_atomically;
 
 void write_outputs(const RunResult& r, const std::filesystem::path& out) {
   std::filesystem::create_directories(out);

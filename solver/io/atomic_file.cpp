@@ -1,0 +1,23 @@
+// Temporary file plus rename: readers see the old file or the new one, never a partial one.
+#include "io/atomic_file.hpp"
+
+#include <unistd.h>
+
+#include <fstream>
+#include <stdexcept>
+
+namespace asperity::io {
+
+void write_atomically(const std::filesystem::path& file, const std::string& text) {
+  const std::filesystem::path tmp = file.string() + ".partial-" + std::to_string(::getpid());
+  {
+    std::ofstream out(tmp, std::ios::binary | std::ios::trunc);
+    if (!out) throw std::runtime_error(tmp.string() + ": cannot write");
+    out << text;
+    out.flush();
+    if (!out) throw std::runtime_error(tmp.string() + ": write failed");
+  }
+  std::filesystem::rename(tmp, file);
+}
+
+}  // namespace asperity::io
