@@ -65,6 +65,7 @@ struct SphereWorld {
   // Sphere state (columns are spheres).
   Eigen::Matrix3Xd x, v, w;         // position m, velocity m/s, angular velocity rad/s
   Eigen::Matrix3Xd force, torque;   // this step's totals, without gravity
+  Eigen::Matrix3Xd v_end;           // predicted end-of-step velocity the dashpots use
   std::vector<Quat> orientation;
   std::vector<double> radius, mass, inertia;  // m, kg, kg·m² (2/5 m r²)
   std::vector<int> material, body;            // material index, scene body index
