@@ -37,12 +37,14 @@ struct LawDef {
 struct PairContact {
   int i = 0, j = 0;  // i < j
   Vec3 spring = Vec3::Zero();
+  double viscous = 0;  // last non-elastic normal force (dashpot, clipping), N
   bool touching = false;
 };
 
 // One sphere–wall history slot (index wall * n_spheres + sphere).
 struct WallContact {
   Vec3 spring = Vec3::Zero();
+  double viscous = 0;
   bool touching = false;
 };
 
