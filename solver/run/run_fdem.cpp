@@ -15,6 +15,7 @@
 #include "fdem/structured_mesh.hpp"
 #include "fdem/time_step.hpp"
 #include "run/impact_measures.hpp"
+#include "run/run_monitor.hpp"
 #if ASPERITY_HAVE_GEOMETRY
 #include "geometry/mesh_pipeline.hpp"
 #endif
@@ -247,9 +248,11 @@ RunResult run_fdem(const scene::SceneDef& s, const RunOptions& options) {
   ImpactMeasures im;
   im.start(0, w.record_force, w.record_depth);
   const fdem::EnergyTerms e0 = fdem::energy(w);
-  const double total0 = e0.total();
-  double energy_scale = e0.kinetic + e0.elastic + e0.contact;
-  double drift = 0;
+  auto balance = [](const fdem::EnergyTerms& e) {
+    return EnergyBalance{.kinetic = e.kinetic, .elastic = e.elastic, .contact = e.contact,
+                         .gravity = e.gravity, .dissipated = e.dissipated};
+  };
+  RunMonitor monitor(s.name, balance(e0), s.unstable_energy_growth, n_steps, options.progress);
   auto push_rows = [&](const fdem::EnergyTerms& e) {
     if (!options.keep_rows) return;
     const Vec3& f = w.record_force;
@@ -262,15 +265,13 @@ RunResult run_fdem(const scene::SceneDef& s, const RunOptions& options) {
   const long check_every = std::min(20, std::max(1, s.record.every));
   Vec3 impulse = Vec3::Zero(), v_approach = Vec3::Zero(), v_separation = Vec3::Zero();
   bool was_touching = im.touching, ended = false;
-  std::string unstable;
-  double last_progress = 0;
-  for (long k = 1; k <= n_steps && unstable.empty(); ++k) {
+  for (long k = 1; k <= n_steps && !monitor.unstable(); ++k) {
     const bool row = k % s.record.every == 0 || k == n_steps;
     w.want_energy = row || k % check_every == 0;
     const Vec3 v_before = relative_velocity();
     fdem::step(w, dt);
     if (!w.failure.empty()) {
-      unstable = w.failure;
+      monitor.flag(w.failure);
       break;
     }
     im.add(w.time, w.record_force, w.record_depth);
@@ -285,41 +286,19 @@ RunResult run_fdem(const scene::SceneDef& s, const RunOptions& options) {
     was_touching = im.touching;
     if (w.want_energy) {
       const fdem::EnergyTerms e = fdem::energy(w);
-      energy_scale = std::max(energy_scale, e.kinetic);
-      const double err = std::abs(e.total() - total0);
-      if (!std::isfinite(e.total()) || !w.x.allFinite()) {
-        unstable = "non-finite state at t = " + fmt(w.time) + " s";
-      } else if (energy_scale > 0) {
-        drift = std::max(drift, err / energy_scale);
-        if (e.total() - total0 > s.unstable_energy_growth * energy_scale) {
-          unstable = "energy grew by " + fmt((e.total() - total0) / energy_scale) +
-                     " of its scale at t = " + fmt(w.time) + " s";
-        }
-      }
+      monitor.check_energy(w.time, balance(e), w.x.allFinite());
       if (row) push_rows(e);
     }
-    if (options.progress && (k & 255) == 0) {
-      const double el = std::chrono::duration<double>(std::chrono::steady_clock::now() - wall0).count();
-      if (el - last_progress > 1.0) {
-        last_progress = el;
-        std::fprintf(stderr, "\r%s: %5.1f%%  step %ld/%ld  %.0f s left ", s.name.c_str(),
-                     100.0 * static_cast<double>(k) / static_cast<double>(n_steps), k, n_steps,
-                     el * static_cast<double>(n_steps - k) / static_cast<double>(k));
-      }
-    }
+    monitor.progress(k);
   }
-  if (options.progress && last_progress > 0) std::fprintf(stderr, "\n");
+  monitor.finish();
   const double cpu = cpu_seconds() - cpu0;
   const double wall = std::chrono::duration<double>(std::chrono::steady_clock::now() - wall0).count();
 
-  if (!unstable.empty()) {
-    result.status = "unstable";
-    result.message = unstable;
-  } else if (im.first_contact_time < 0) {
-    result.status = "no_contact";
-  } else {
-    result.status = "ok";
-  }
+  result.status = monitor.status(im.first_contact_time >= 0);
+  result.message = monitor.message();
+  const double drift = monitor.drift();
+  const std::string& unstable = monitor.message();
   using J = nlohmann::ordered_json;
   auto& j = result.summary;
   j["status"] = result.status;

@@ -15,6 +15,7 @@
 #include "dem/sphere_world.hpp"
 #include "dem/time_step.hpp"
 #include "run/impact_measures.hpp"
+#include "run/run_monitor.hpp"
 #include "run/run_fdem.hpp"
 #include "run/rebound.hpp"
 
@@ -180,10 +181,12 @@ RunResult run_scene(const scene::SceneDef& s, const RunOptions& options) {
   const std::uint64_t ticks0 = ticks();
   ImpactMeasures im;
   im.start(0, w.record_force, w.record_overlap);
+  auto balance = [](const dem::EnergyTerms& e) {
+    return EnergyBalance{.kinetic = e.kinetic, .contact = e.contact, .gravity = e.gravity,
+                         .dissipated = e.dissipated};
+  };
   const dem::EnergyTerms e0 = dem::energy(w);
-  const double total0 = e0.total();
-  double energy_scale = e0.kinetic + e0.contact;
-  double drift = 0;
+  RunMonitor monitor(s.name, balance(e0), s.unstable_energy_growth, n_steps, options.progress);
   auto push_rows = [&](const dem::EnergyTerms& e) {
     if (!options.keep_rows) return;
     const Vec3& f = w.record_force;
@@ -193,55 +196,29 @@ RunResult run_scene(const scene::SceneDef& s, const RunOptions& options) {
   push_rows(e0);
   // Energy is checked every step for small scenes, else every `every` steps (it costs O(N)).
   const long check_every = w.size() <= 256 ? 1 : std::max(1, s.record.every);
-  std::string unstable;
-  double last_progress = 0;
-  for (long k = 1; k <= n_steps && unstable.empty(); ++k) {
+  for (long k = 1; k <= n_steps && !monitor.unstable(); ++k) {
     dem::step(w, dt);
     im.add(w.time, w.record_force, w.record_overlap);
     const bool row = k % s.record.every == 0 || k == n_steps;
     if (row || k % check_every == 0) {
       const dem::EnergyTerms e = dem::energy(w);
-      // The energy the physics can supply: the initial kinetic and contact energy plus what
-      // gravity has released so far. Growth beyond it is made by the integrator.
-      energy_scale = std::max(energy_scale, e0.kinetic + e0.contact + std::max(0.0, -e.gravity));
-      const double err = std::abs(e.total() - total0);
-      if (!std::isfinite(e.total()) || !w.x.allFinite()) {
-        unstable = "non-finite state at t = " + fmt(w.time) + " s";
-      } else if (energy_scale > 0) {
-        drift = std::max(drift, err / energy_scale);
-        if (e.total() - total0 > s.unstable_energy_growth * energy_scale) {
-          unstable = "energy grew by " + fmt((e.total() - total0) / energy_scale) +
-                     " of its scale at t = " + fmt(w.time) + " s";
-        }
-      }
+      monitor.check_energy(w.time, balance(e), w.x.allFinite());
       if (row) push_rows(e);
     }
-    if (unstable.empty() && w.max_overlap_ratio > 1) {
-      unstable = "runaway overlap (a body passed through another) at t = " + fmt(w.time) + " s";
+    if (w.max_overlap_ratio > 1) {
+      monitor.flag("runaway overlap (a body passed through another) at t = " + fmt(w.time) + " s");
     }
-    if (options.progress && (k & 1023) == 0) {
-      const double el = std::chrono::duration<double>(std::chrono::steady_clock::now() - wall0).count();
-      if (el - last_progress > 1.0) {
-        last_progress = el;
-        std::fprintf(stderr, "\r%s: %5.1f%%  step %ld/%ld  %.0f s left ", s.name.c_str(),
-                     100.0 * static_cast<double>(k) / static_cast<double>(n_steps), k, n_steps,
-                     el * static_cast<double>(n_steps - k) / static_cast<double>(k));
-      }
-    }
+    monitor.progress(k);
   }
-  if (options.progress && last_progress > 0) std::fprintf(stderr, "\n");
+  monitor.finish();
   const double cpu = cpu_seconds() - cpu0;
   const double wall = std::chrono::duration<double>(std::chrono::steady_clock::now() - wall0).count();
   const double per_tick = seconds_per_tick(wall, ticks() - ticks0);
 
-  if (!unstable.empty()) {
-    result.status = "unstable";
-    result.message = unstable;
-  } else if (im.first_contact_time < 0) {
-    result.status = "no_contact";
-  } else {
-    result.status = "ok";
-  }
+  result.status = monitor.status(im.first_contact_time >= 0);
+  result.message = monitor.message();
+  const double drift = monitor.drift();
+  const std::string& unstable = monitor.message();
   auto& j = result.summary;
   j["status"] = result.status;
   if (!unstable.empty()) j["message"] = unstable;
