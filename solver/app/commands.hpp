@@ -12,6 +12,7 @@ using Action = std::function<int()>;
 
 void add_run_command(CLI::App& app, Action& action);
 void add_validate_command(CLI::App& app, Action& action);
+void add_crosscheck_command(CLI::App& app, Action& action);
 void add_stability_command(CLI::App& app, Action& action);
 void add_mesh_command(CLI::App& app, Action& action);
 void add_particle_command(CLI::App& app, Action& action);

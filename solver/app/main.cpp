@@ -20,6 +20,7 @@ int main(int argc, char** argv) {
   app::Action action;
   app::add_run_command(cli, action);
   app::add_validate_command(cli, action);
+  app::add_crosscheck_command(cli, action);
   app::add_stability_command(cli, action);
   app::add_mesh_command(cli, action);
   app::add_particle_command(cli, action);
