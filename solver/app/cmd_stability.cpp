@@ -15,6 +15,7 @@ void add_stability_command(CLI::App& app, Action& action) {
   struct Args {
     std::filesystem::path scene, out;
     std::string factors;
+    CLI::Option* factors_option = nullptr;
     double reference_factor = 0;
     bool quiet = false;
   };
@@ -25,7 +26,7 @@ void add_stability_command(CLI::App& app, Action& action) {
       "and DIR/summary.json (dt_critical_predicted, dt_stable_max_measured)");
   cmd->add_option("scene", args->scene, "Scene file (JSON)")->required();
   cmd->add_option("--out", args->out, "Output folder")->required();
-  cmd->add_option("--factors", args->factors,
+  args->factors_option = cmd->add_option("--factors", args->factors,
                   "Comma-separated multiples of the predicted critical step "
                   "(default 0.05,0.1,0.25,0.5,0.75,0.9,1,1.1,1.25,1.5,2,3,5)");
   cmd->add_option("--reference-factor", args->reference_factor,
@@ -36,7 +37,7 @@ void add_stability_command(CLI::App& app, Action& action) {
     action = [args] {
       // Validate everything before running anything.
       const std::vector<double> factors =
-          args->factors.empty() ? run::default_stability_factors()
+          args->factors_option->count() == 0 ? run::default_stability_factors()
                                 : run::parse_factors(args->factors, "--factors");
       if (args->reference_factor < 0) throw InputError("--reference-factor: must be > 0");
       const scene::SceneDef s = scene::load_scene(args->scene);

@@ -64,5 +64,18 @@ check "unstable exits 3" test $? -eq 3
 check "unstable summary" grep -q '"status": "unstable"' "$work/unstable/summary.json"
 check "no curves from an unstable run" test ! -e "$work/unstable/force.csv"
 
+# Stability sweep: the contract's files; bad factors are bad input.
+"$bin" stability "$work/good.json" --out "$work/stab" --factors 0.5,1,20 -q
+check "stability exits 0" test $? -eq 0
+check "stability.csv header" test "$(head -1 "$work/stab/stability.csv" | cut -d, -f1-6)" = "factor,dt,status,energy_drift,peak_force,cpu_seconds"
+check "stability.csv has a row per factor" test "$(wc -l < "$work/stab/stability.csv")" -eq 4
+check "stability summary keys" grep -q '"dt_stable_max_measured"' "$work/stab/summary.json"
+"$bin" stability "$work/good.json" --out "$work/stab-bad" --factors 0.5,-1 2> "$work/stab.err"
+check "negative factor exits 2" test $? -eq 2
+check "negative factor is named" grep -q -- '--factors: "-1" is not a positive number' "$work/stab.err"
+check "nothing written for bad factors" test ! -e "$work/stab-bad"
+"$bin" stability "$work/good.json" --out "$work/stab-bad" --factors "" 2> /dev/null
+check "empty factor list exits 2" test $? -eq 2
+
 echo "$passed passed, $failed failed"
 test "$failed" -eq 0
