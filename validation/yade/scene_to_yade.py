@@ -191,7 +191,7 @@ def build(spec, record):
     rec = None
     if record:
         rec = Recorder(spec, ids, owner, mats, law)
-        engines.append(PyRunner(command="RECORDER.step()", iterPeriod=1))
+        engines.append(PyRunner(command="RECORDER.step()", iterPeriod=1, initRun=True))
     engines.append(NewtonIntegrator(gravity=spec["gravity"], damping=0))
     O.engines = engines
     O.dt = spec["dt"]
