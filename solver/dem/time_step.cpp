@@ -5,6 +5,7 @@
 #include <cmath>
 #include <limits>
 #include <numbers>
+#include <vector>
 
 #include "contact/hertz_impact.hpp"
 
@@ -43,10 +44,22 @@ CriticalStep critical_step(const SphereWorld& w) {
   }
   out.approach_speed = 2 * v_max + std::sqrt(2 * w.gravity.norm() * height);
 
+  // Only pairs that can touch: a free sphere's material against any sphere's or wall's (two
+  // walls never meet, and a stiff wall material against itself must not set the step).
+  const int nm = static_cast<int>(w.materials.size());
+  std::vector<char> free_material(nm, 0), any_material(nm, 0);
+  for (int i = 0; i < w.size(); ++i) {
+    any_material[w.material[i]] = 1;
+    if (!w.fixed[i]) free_material[w.material[i]] = 1;
+  }
+  for (const Wall& wall : w.walls) any_material[wall.material] = 1;
   double young_max = 0, zeta_max = 0;
-  for (const PairConstants& pc : w.pair) {
-    young_max = std::max(young_max, pc.young_eff);
-    zeta_max = std::max(zeta_max, pc.zeta);
+  for (int a = 0; a < nm; ++a) {
+    for (int b = 0; b < nm; ++b) {
+      if (!free_material[a] || !any_material[b]) continue;
+      young_max = std::max(young_max, w.pair[a * nm + b].young_eff);
+      zeta_max = std::max(zeta_max, w.pair[a * nm + b].zeta);
+    }
   }
   out.contact = inf;
   if (m_min < inf) {
