@@ -22,8 +22,10 @@ struct CriticalStep {
 // k_f = p A (1/h + 1/h') (fdem_world.cpp) distributed over its three nodes by the consistent
 // face matrix k_f/12 [[2,1,1],[1,2,1],[1,1,2]], whose rows sum to k_f/3. Gershgorin's theorem on
 // M⁻¹K_c then bounds ω_c² by max over nodes of Σ_faces (k_f/3) / m_node, with every surface face
-// assumed in contact at once (conservative). A rigid body uses its nodes' lumped masses: the
-// rigid constraint only lowers the highest frequency (Rayleigh quotient on a subspace).
+// assumed in contact at once (conservative). A rigid body takes the same node springs through
+// its 6 DOF: ω_c² = the largest root of det(K_r − ω² M_r) (time_step.cpp), the contact stiffness
+// over its mass and inertia; its nodes' lumped masses would bound it too (the rigid constraint
+// only lowers the highest frequency) but about 10× too conservatively.
 //
 // The two stiffnesses act together, so taking min(dt_element, dt_contact) is not safe when they
 // are close; Weyl's inequality λ_max(A + B) ≤ λ_max(A) + λ_max(B) gives ω² ≤ ω_e² + ω_c².

@@ -30,22 +30,11 @@ std::string fmt(double x) {
   return s.str();
 }
 
-// The stability sweep's "dt = factor × predicted critical step", read where RunOptions carries it
-// (RunOptions::dt_factor lands with the stability command).
-template <class Options>
-std::optional<double> dt_factor(const Options& o) {
-  if constexpr (requires { o.dt_factor; }) {
-    return o.dt_factor;
-  } else {
-    return std::nullopt;
-  }
-}
-
 double cpu_seconds() { return static_cast<double>(std::clock()) / CLOCKS_PER_SEC; }
 
-// The scene default dt_safety (0.01) is the sphere DEM's: it resolves a Hertz contact in ~200
-// steps. Here the step is set by element and penalty stiffness, each contact spans thousands of
-// steps at the critical one, and the bound is already conservative (element eigenvalue and
+// FEM/DEM default dt_safety (the sphere DEM's 0.01 resolves a Hertz contact in ~200 steps).
+// Here the step is set by element and penalty stiffness, each contact spans thousands of steps
+// at the critical one, and the bound is already conservative (element eigenvalue and
 // Gershgorin bounds), so the FEM/DEM default is 0.5 unless the scene gives its own factor.
 constexpr double kFdemSafety = 0.5;
 
@@ -204,11 +193,11 @@ RunResult run_fdem(const scene::SceneDef& s, const RunOptions& options) {
     throw InputError(where + "bodies: nothing moves (every body is fixed)");
   }
 
-  const double safety = s.dt_safety == scene::SceneDef{}.dt_safety ? kFdemSafety : s.dt_safety;
+  const double safety = s.dt_safety.value_or(kFdemSafety);
   double dt = 0;
   bool auto_dt = false;
-  if (const std::optional<double> factor = dt_factor(options)) {
-    dt = *factor * crit.critical;
+  if (options.dt_factor) {
+    dt = *options.dt_factor * crit.critical;
   } else if (const std::optional<double> given = options.dt ? options.dt : s.dt) {
     dt = *given;
     if (dt > crit.critical && !(options.allow_unsafe_dt || s.allow_unsafe_dt)) {

@@ -46,25 +46,31 @@ StabilityResult stability_sweep(const scene::SceneDef& scene, std::vector<double
                                 const std::function<void(const StabilityRow&, int, int)>& progress) {
   std::sort(factors.begin(), factors.end());
   factors.erase(std::unique(factors.begin(), factors.end()), factors.end());
-  const double ref_factor = reference_factor.value_or(std::min(scene.dt_safety, factors.front() / 8));
   StabilityResult result;
-
-  auto run_at = [&](double factor) {
+  auto run_at = [&](std::optional<double> factor) {
     RunOptions o;
     o.dt_factor = factor;
     o.keep_rows = false;
     return run_scene(scene, o);
   };
+  // The automatic step must be stable: run it (dt_factor empty) and read the safety factor the
+  // model used (each model family has its own default when the scene gives none).
+  std::string auto_status = "n/a (scene gives dt)";
+  std::optional<double> safety = scene.dt_safety;
+  double sweep_cpu = 0;
+  int runs = 1;
+  if (!scene.dt) {
+    const RunResult automatic = run_at(std::nullopt);
+    auto_status = automatic.status;
+    sweep_cpu += automatic.summary["cpu_seconds"].get<double>();
+    ++runs;
+    safety = automatic.summary["dt_safety"].get<double>();
+  }
+  const double ref_factor = reference_factor.value_or(std::min(safety.value_or(1.0), factors.front() / 8));
   const RunResult ref = run_at(ref_factor);
   const double predicted = ref.summary["dt_critical_predicted"].get<double>();
   const double ref_peak = ref.summary["peak_force"].get<double>();
   const double ref_impulse = ref.summary["impulse"].get<double>();
-
-  // The automatic step must be stable: run it unless the reference already is that step.
-  std::string auto_status = "n/a (scene gives dt)";
-  if (!scene.dt) {
-    auto_status = ref_factor == scene.dt_safety ? ref.status : run_at(scene.dt_safety).status;
-  }
 
   const int total = static_cast<int>(factors.size());
   for (int k = 0; k < total; ++k) {
@@ -86,7 +92,7 @@ StabilityResult stability_sweep(const scene::SceneDef& scene, std::vector<double
 
   // Measured limit: the largest step below which every step tried stayed stable.
   std::optional<double> stable_max, first_unstable;
-  double sweep_cpu = ref.summary["cpu_seconds"].get<double>();
+  sweep_cpu += ref.summary["cpu_seconds"].get<double>();
   for (const StabilityRow& row : result.rows) {
     sweep_cpu += row.cpu_seconds;
     if (row.status == "unstable") {
@@ -112,7 +118,7 @@ StabilityResult stability_sweep(const scene::SceneDef& scene, std::vector<double
   j["criteria"] = "unstable: non-finite state, total energy growth above unstable_energy_growth of "
                   "the energy scale, or an overlap beyond the smaller radius (runaway overlap)";
   j["sweep_cpu_seconds"] = sweep_cpu;
-  j["runs"] = result.rows.size() + 1;
+  j["runs"] = result.rows.size() + static_cast<std::size_t>(runs);
   return result;
 }
 

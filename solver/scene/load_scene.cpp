@@ -115,7 +115,7 @@ SceneDef parse_scene(const io::Json& json, const std::filesystem::path& file,
     }
   }
   // A safety factor above 1 is past the predicted limit by construction.
-  s.dt_safety = r.has("dt_safety") ? r.in_range("dt_safety", 0.0, 1.0, true, false) : s.dt_safety;
+  if (r.has("dt_safety")) s.dt_safety = r.in_range("dt_safety", 0.0, 1.0, true, false);
   s.allow_unsafe_dt = r.boolean_or("allow_unsafe_dt", false);
   if (r.has("unstable_energy_growth")) s.unstable_energy_growth = r.positive("unstable_energy_growth");
 

@@ -65,7 +65,10 @@ struct SceneDef {
   Vec3 gravity = Vec3::Zero();
   double duration = 0;
   std::optional<double> dt;  // empty: "auto"
-  double dt_safety = 0.01;  // spheres: ≥ 200 steps per contact keep the energy error below 1e-4
+  // Factor on the predicted critical step for "auto"; empty: the model's own default (spheres
+  // 0.01, run/run_scene.cpp; FEM/DEM 0.5, run/run_fdem.cpp). Runs report the one used as
+  // summary "dt_safety".
+  std::optional<double> dt_safety;
   bool allow_unsafe_dt = false;  // run a given dt above the predicted critical step
   // Energy growth, as a fraction of the energy the physics supplied, that stops a run as
   // unstable. An unstable leapfrog grows geometrically past any bound within a few steps; a
