@@ -2,7 +2,7 @@
 # Checks the contract's exit codes and outputs by running the program as a user would.
 set -u
 bin=$1
-src=$2
+src=$(cd "$2" && pwd)
 work=$(mktemp -d)
 trap 'rm -rf "$work"' EXIT
 passed=0
@@ -76,6 +76,29 @@ check "negative factor is named" grep -q -- '--factors: "-1" is not a positive n
 check "nothing written for bad factors" test ! -e "$work/stab-bad"
 "$bin" stability "$work/good.json" --out "$work/stab-bad" --factors "" 2> /dev/null
 check "empty factor list exits 2" test $? -eq 2
+
+# A mesh scene goes through the FEM/DEM runner: the same contract, and the geometry pipeline's
+# errors for a bad mesh file.
+/usr/bin/python3 - "$src" "$work/mesh.json" <<'PY'
+import json, sys
+src, out = sys.argv[1], sys.argv[2]
+case = json.load(open(f"{src}/validation/cases/stability/stability-fem-particle-block.json"))
+s = case["scene"]
+for b in s["bodies"]:
+    if b["shape"]["type"] == "mesh":
+        b["shape"]["file"] = f"{src}/data/meshes/particle-seed3-320.off"
+json.dump(s, open(out, "w"))
+PY
+"$bin" run "$work/mesh.json" --out "$work/mesh" -q
+check "mesh scene exits 0" test $? -eq 0
+check "mesh scene summary" grep -q '"status": "ok"' "$work/mesh/summary.json"
+check "mesh scene force rows" test "$(wc -l < "$work/mesh/force.csv")" -gt 10
+printf 'solid broken\n  facet normal 0 0 1\n' > "$work/broken.stl"
+sed "s#$src/data/meshes/particle-seed3-320.off#$work/broken.stl#" "$work/mesh.json" > "$work/badmesh.json"
+"$bin" run "$work/badmesh.json" --out "$work/badmesh" 2> "$work/badmesh.err"
+check "bad mesh file exits 2" test $? -eq 2
+check "bad mesh names the file" grep -q "broken.stl" "$work/badmesh.err"
+check "nothing written for a bad mesh" test ! -e "$work/badmesh"
 
 echo "$passed passed, $failed failed"
 test "$failed" -eq 0
