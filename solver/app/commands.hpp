@@ -16,5 +16,8 @@ void add_crosscheck_command(CLI::App& app, Action& action);
 void add_stability_command(CLI::App& app, Action& action);
 void add_mesh_command(CLI::App& app, Action& action);
 void add_particle_command(CLI::App& app, Action& action);
+void add_study_command(CLI::App& app, Action& action);
+void add_report_command(CLI::App& app, Action& action);
+void add_recommend_command(CLI::App& app, Action& action);
 
 }  // namespace asperity::app

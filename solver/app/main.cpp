@@ -24,6 +24,9 @@ int main(int argc, char** argv) {
   app::add_stability_command(cli, action);
   app::add_mesh_command(cli, action);
   app::add_particle_command(cli, action);
+  app::add_study_command(cli, action);
+  app::add_report_command(cli, action);
+  app::add_recommend_command(cli, action);
 
   try {
     cli.parse(argc, argv);

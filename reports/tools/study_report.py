@@ -1,0 +1,407 @@
+#!/usr/bin/python3
+"""The particle-geometry study report (issue 7): Markdown + HTML with matplotlib charts.
+
+Called by `asperity report DIR` (solver/app/cmd_report.cpp) with the study folder that
+`asperity study` wrote (cases.csv, classification.csv, ... and cases/**/force.csv). Reads only;
+writes OUT/report.md, OUT/report.html, OUT/*.png and copies of the tables (CSV).
+Runs under Debian's /usr/bin/python3 with python3-matplotlib.
+"""
+import argparse
+import csv
+import glob
+import html
+import json
+import math
+import os
+import shutil
+import sys
+
+import matplotlib
+
+matplotlib.use("Agg")
+import matplotlib.pyplot as plt  # noqa: E402
+
+TABLES = ["cases.csv", "classification.csv", "particle_classes.csv", "cpu_fit.csv", "candidates.csv",
+          "guidelines.csv"]
+MODEL_COLOURS = {"fem": "tab:blue", "rigid": "tab:orange", "sphere": "tab:green"}
+
+
+def read_csv(path):
+    with open(path, newline="") as f:
+        return list(csv.DictReader(f))
+
+
+def num(x):
+    try:
+        return float(x)
+    except (TypeError, ValueError):
+        return math.nan
+
+
+def fmt(x, digits=4):
+    v = num(x)
+    if math.isnan(v):
+        return "" if x in (None, "") else str(x)
+    return f"{v:.{digits}g}"
+
+
+def pct(x, digits=2):
+    v = num(x)
+    return "" if math.isnan(v) else f"{100 * v:.{digits}f} %"
+
+
+class Doc:
+    """Markdown and HTML written side by side from the same calls."""
+
+    def __init__(self):
+        self.md, self.html = [], []
+
+    def h(self, level, text):
+        self.md.append("#" * level + " " + text + "\n")
+        self.html.append(f"<h{level}>{html.escape(text)}</h{level}>")
+
+    def p(self, text):
+        self.md.append(text + "\n")
+        self.html.append(f"<p>{html.escape(text)}</p>")
+
+    def table(self, header, rows):
+        if not rows:
+            self.p("(no rows)")
+            return
+        self.md.append("| " + " | ".join(header) + " |")
+        self.md.append("|" + "---|" * len(header))
+        for r in rows:
+            self.md.append("| " + " | ".join(str(c) for c in r) + " |")
+        self.md.append("")
+        out = ["<table><thead><tr>" + "".join(f"<th>{html.escape(h)}</th>" for h in header) + "</tr></thead><tbody>"]
+        for r in rows:
+            out.append("<tr>" + "".join(f"<td>{html.escape(str(c))}</td>" for c in r) + "</tr>")
+        out.append("</tbody></table>")
+        self.html.append("".join(out))
+
+    def image(self, name, alt):
+        self.md.append(f"![{alt}]({name})\n")
+        self.html.append(f'<figure><img src="{html.escape(name)}" alt="{html.escape(alt)}">'
+                         f"<figcaption>{html.escape(alt)}</figcaption></figure>")
+
+
+def read_force(path):
+    t, f = [], []
+    with open(path) as fh:
+        next(fh)
+        for line in fh:
+            parts = line.split(",")
+            if len(parts) >= 5:
+                t.append(float(parts[0]))
+                f.append(float(parts[4]))
+    return t, f
+
+
+def force_overlays(study, out, cases, doc):
+    particles = sorted({c["particle"] for c in cases}, key=lambda p: [c["particle"] for c in cases].index(p))
+    placements = sorted({c["placement"] for c in cases})
+    models = [m for m in ("fem", "rigid") if any(c["model"] == m for c in cases)]
+    if not models:
+        models = ["sphere"]
+    names = []
+    for p in particles:
+        fig, axes = plt.subplots(len(placements), len(models), figsize=(4.2 * len(models), 2.6 * len(placements)),
+                                 squeeze=False, sharex=True)
+        for i, pl in enumerate(placements):
+            for j, m in enumerate(models):
+                ax = axes[i][j]
+                rows = [c for c in cases if c["particle"] == p and c["placement"] == pl and c["model"] == m
+                        and c["status"] == "ok"]
+                rows.sort(key=lambda c: num(c["resolution"]))
+                cmap = plt.get_cmap("viridis")
+                for k, c in enumerate(rows):
+                    folder = f"{m}-{c['resolution']}-{pl}"
+                    t, f = read_force(os.path.join(study, "cases", p, folder, "force.csv"))
+                    ax.plot([1e3 * x for x in t], f, color=cmap(k / max(1, len(rows) - 1)), lw=1.0,
+                            label=f"{c['resolution']}")
+                sph = [c for c in cases if c["particle"] == p and c["placement"] == pl and c["model"] == "sphere"
+                       and c["status"] == "ok"]
+                if sph:
+                    t, f = read_force(os.path.join(study, "cases", p, f"sphere-{pl}", "force.csv"))
+                    ax.plot([1e3 * x for x in t], f, "k--", lw=0.8, label="sphere")
+                ax.set_title(f"{m}, placed by {pl}", fontsize=9)
+                ax.tick_params(labelsize=7)
+                if i == len(placements) - 1:
+                    ax.set_xlabel("t (ms)", fontsize=8)
+                if j == 0:
+                    ax.set_ylabel("|F| (N)", fontsize=8)
+                ax.legend(fontsize=6, title="triangles", title_fontsize=6)
+        fig.suptitle(f"{p}: force against time", fontsize=10)
+        fig.tight_layout()
+        name = f"force_{p}.png"
+        fig.savefig(os.path.join(out, name), dpi=72)
+        plt.close(fig)
+        names.append((p, name))
+    for p, name in names:
+        doc.image(name, f"Force-time curves of {p} at every resolution")
+
+
+def cpu_chart(out, cases, fits, doc):
+    fig, ax = plt.subplots(figsize=(6, 4))
+    for m in ("fem", "rigid"):
+        for pl, marker in (("centroid", "o"), ("lowest", "s")):
+            rows = [c for c in cases if c["model"] == m and c["placement"] == pl and c["status"] == "ok"]
+            if not rows:
+                continue
+            ax.scatter([num(c["resolution"]) for c in rows], [num(c["cpu_seconds"]) for c in rows], s=10, alpha=0.35,
+                       color=MODEL_COLOURS[m], marker=marker)
+            fit = [f for f in fits if f["model"] == m and f["placement"] == pl]
+            if fit:
+                p, c0 = num(fit[0]["exponent"]), num(fit[0]["coefficient"])
+                xs = sorted({num(c["resolution"]) for c in rows})
+                ax.plot(xs, [c0 * x ** p for x in xs], color=MODEL_COLOURS[m],
+                        ls="-" if pl == "centroid" else ":", label=f"{m}, {pl}: CPU ~ N^{p:.2f}")
+    ax.set_xscale("log")
+    ax.set_yscale("log")
+    ax.set_xlabel("surface triangles N")
+    ax.set_ylabel("CPU time per case (s)")
+    ax.set_title("CPU time against resolution (median fit)")
+    ax.legend(fontsize=7)
+    ax.grid(True, which="both", alpha=0.3)
+    fig.tight_layout()
+    fig.savefig(os.path.join(out, "cpu_vs_resolution.png"), dpi=80)
+    plt.close(fig)
+    doc.image("cpu_vs_resolution.png", "CPU time against resolution, log-log, with the fitted exponent")
+
+
+def pareto(points):
+    """Indices of the points no other point beats in both cost and error (lower is better)."""
+    front = []
+    for i, (c, e) in enumerate(points):
+        if not any((c2 <= c and e2 <= e) and (c2 < c or e2 < e) for j, (c2, e2) in enumerate(points) if j != i):
+            front.append(i)
+    return sorted(front, key=lambda i: points[i][0])
+
+
+def accuracy_cost_chart(out, candidates, doc):
+    placements = sorted({c["placement"] for c in candidates})
+    fig, axes = plt.subplots(len(placements), 2, figsize=(10, 3.8 * len(placements)), squeeze=False)
+    floor = 1e-5  # the fem reference has error 0; drawn at this floor on the log axis
+    for i, pl in enumerate(placements):
+        rows = [c for c in candidates if c["placement"] == pl]
+        for j, (metric, title) in enumerate((("peak_force", "peak force"), ("impulse", "impulse"))):
+            ax = axes[i][j]
+            pts = []
+            for c in rows:
+                cost = num(c["cpu_seconds_median"])
+                err = max(num(c[f"{metric}_err_median"]), floor)
+                p90 = max(num(c[f"{metric}_err_p90"]), floor)
+                pts.append((cost, err))
+                ax.scatter([cost], [err], color=MODEL_COLOURS[c["model"]], s=25, zorder=3)
+                ax.scatter([cost], [p90], color=MODEL_COLOURS[c["model"]], s=12, marker="^", alpha=0.5)
+                ax.annotate(c["resolution"] or "sphere", (cost, err), fontsize=6, xytext=(3, 3),
+                            textcoords="offset points")
+            front = pareto(pts)
+            ax.plot([pts[k][0] for k in front], [pts[k][1] for k in front], "k-", lw=0.8, label="Pareto front (median)")
+            for m, col in MODEL_COLOURS.items():
+                ax.scatter([], [], color=col, label=m)
+            ax.scatter([], [], color="grey", marker="^", s=12, label="90th percentile")
+            for tol in (0.02, 0.05, 0.10):
+                ax.axhline(tol, color="grey", lw=0.5, ls=":")
+            ax.set_xscale("log")
+            ax.set_yscale("log")
+            ax.set_xlabel("median CPU time per case (s)")
+            ax.set_ylabel(f"|error| in {title} vs fem reference")
+            ax.set_title(f"{title}, placed by {pl}", fontsize=9)
+            ax.legend(fontsize=6)
+            ax.grid(True, which="both", alpha=0.3)
+    fig.tight_layout()
+    fig.savefig(os.path.join(out, "accuracy_vs_cost.png"), dpi=80)
+    plt.close(fig)
+    doc.image("accuracy_vs_cost.png", "Accuracy against cost: error in peak force and impulse against CPU time, "
+              "every model and resolution, Pareto front marked (errors of 0 drawn at 1e-5)")
+
+
+def stability_section(out, stab_dir, doc):
+    path = os.path.join(stab_dir, "stability.csv")
+    if not os.path.exists(path):
+        return
+    rows = read_csv(path)
+    doc.h(2, "Stability map and accuracy against step")
+    doc.p(f"From {stab_dir} (asperity stability): each time step tried, as a multiple of the predicted critical step.")
+    fig, axes = plt.subplots(1, 2, figsize=(10, 3.6))
+    colours = {"ok": "tab:green", "no_contact": "tab:grey", "unstable": "tab:red"}
+    for r in rows:
+        axes[0].scatter([num(r["factor"])], [max(num(r["energy_drift"]), 1e-16)],
+                        color=colours.get(r["status"], "k"), s=20)
+    for s, c in colours.items():
+        axes[0].scatter([], [], color=c, label=s)
+    axes[0].axvline(1.0, color="k", lw=0.5, ls=":")
+    axes[0].set_xscale("log")
+    axes[0].set_yscale("log")
+    axes[0].set_xlabel("dt / predicted critical step")
+    axes[0].set_ylabel("energy drift")
+    axes[0].legend(fontsize=7)
+    axes[0].set_title("stability map", fontsize=9)
+    key = "peak_force_error" if rows and "peak_force_error" in rows[0] else None
+    ok = [r for r in rows if r["status"] == "ok"]
+    if key:
+        axes[1].plot([num(r["dt"]) for r in ok], [abs(num(r[key])) for r in ok], "o-")
+        axes[1].set_ylabel("|peak force error|")
+        axes[1].set_yscale("log")
+    else:
+        axes[1].plot([num(r["dt"]) for r in ok], [num(r["peak_force"]) for r in ok], "o-")
+        axes[1].set_ylabel("peak force (N)")
+    axes[1].set_xscale("log")
+    axes[1].set_xlabel("dt (s)")
+    axes[1].set_title("accuracy against step", fontsize=9)
+    fig.tight_layout()
+    fig.savefig(os.path.join(out, "stability.png"), dpi=80)
+    plt.close(fig)
+    doc.image("stability.png", "Stability map and accuracy against time step")
+    header = list(rows[0].keys()) if rows else []
+    doc.table(header, [[fmt(r[h]) if h != "status" else r[h] for h in header] for r in rows])
+    shutil.copyfile(path, os.path.join(out, "stability.csv"))
+
+
+def yade_section(out, yade_dir, doc):
+    files = sorted(glob.glob(os.path.join(yade_dir, "**", "comparison.json"), recursive=True))
+    if not files:
+        return
+    doc.h(2, "YADE comparison")
+    doc.p(f"From {yade_dir} (asperity crosscheck): each scene run in asperity and in YADE; relative difference "
+          "(asperity - YADE) / YADE.")
+    rows, csv_rows = [], []
+    for f in files:
+        with open(f) as fh:
+            j = json.load(fh)
+        name = j.get("scene") or os.path.basename(os.path.dirname(f))
+        cells = [name]
+        for key in ("peak_force", "impulse", "contact_duration"):
+            e = j.get(key) or {}
+            a = e.get("asperity") if isinstance(e, dict) else None
+            y = e.get("yade") if isinstance(e, dict) else None
+            d = e.get("rel_diff", e.get("relative_difference")) if isinstance(e, dict) else None
+            cells += [fmt(a), fmt(y), pct(d)]
+        rows.append(cells)
+        csv_rows.append(cells)
+    header = ["scene"] + [f"{k} {w}" for k in ("peak_force", "impulse", "contact_duration")
+                          for w in ("asperity", "YADE", "diff")]
+    doc.table(header, rows)
+    with open(os.path.join(out, "yade_comparison.csv"), "w", newline="") as fh:
+        w = csv.writer(fh)
+        w.writerow(header)
+        w.writerows(csv_rows)
+
+
+CSS = ("body{font-family:sans-serif;max-width:1100px;margin:2em auto;padding:0 1em;color:#222}"
+       "table{border-collapse:collapse;font-size:12px;margin:1em 0}td,th{border:1px solid #ccc;padding:2px 6px}"
+       "th{background:#eee}img{max-width:100%}figure{margin:1em 0}figcaption{font-size:12px;color:#555}")
+
+
+def main():
+    ap = argparse.ArgumentParser(description=__doc__)
+    ap.add_argument("study")
+    ap.add_argument("--out", required=True)
+    ap.add_argument("--stability", default="")
+    ap.add_argument("--yade", default="")
+    a = ap.parse_args()
+    os.makedirs(a.out, exist_ok=True)
+    for t in TABLES + ["study_summary.json", "guidelines.json"]:
+        src = os.path.join(a.study, t)
+        if not os.path.exists(src):
+            sys.exit(f"study_report: {src}: missing (run asperity study first)")
+        if os.path.abspath(src) != os.path.abspath(os.path.join(a.out, t)):
+            shutil.copyfile(src, os.path.join(a.out, t))
+    cases = read_csv(os.path.join(a.study, "cases.csv"))
+    fits = read_csv(os.path.join(a.study, "cpu_fit.csv"))
+    candidates = read_csv(os.path.join(a.study, "candidates.csv"))
+    guidelines = read_csv(os.path.join(a.study, "guidelines.csv"))
+    classes = read_csv(os.path.join(a.study, "particle_classes.csv"))
+    classification = read_csv(os.path.join(a.study, "classification.csv"))
+    with open(os.path.join(a.study, "study_summary.json")) as fh:
+        summary = json.load(fh)
+
+    doc = Doc()
+    doc.h(1, f"Particle-geometry study: {summary['study']}")
+    doc.p(f"{summary['particles']} particles x resolutions {summary['resolutions']} x models "
+          f"{', '.join(summary['models'])} x placements {', '.join(summary['placements'])}: {summary['cases']} cases, "
+          f"{summary['done']} done, {summary['failed']} failed. Each particle is launched straight down onto a fixed "
+          "block under gravity. Errors are relative to the finest resolution of the same model (err) and to the "
+          "finest fem mesh (err_fem), same placement. Tables: cases.csv, classification.csv, particle_classes.csv, "
+          "cpu_fit.csv, candidates.csv, guidelines.csv beside this file.")
+
+    doc.h(2, "Cost")
+    pub = summary["published"]
+    growth = summary.get("fem_cpu_growth") or {}
+    rows = [["this study", summary["cases"], fmt(summary["cpu_seconds_total"]),
+             fmt(summary.get("fem_cpu_growth_100_1000")) or "-",
+             f"{growth.get('from')} -> {growth.get('to')}: {fmt(growth.get('ratio'))}" if growth else "-"],
+            ["Zhang & Zsaki 2019", pub["simulations"], f"{pub['cpu_seconds_100']} s at 100, {pub['cpu_seconds_1000']} s "
+             "at 1000 triangles", fmt(pub["cpu_growth_100_1000"]), "-"]]
+    doc.table(["study", "simulations", "total CPU (s)", "fem CPU growth 100 -> 1000", "fem CPU growth, study range"],
+              rows)
+    by = summary.get("cpu_seconds_by_model", {})
+    doc.p("CPU seconds by model: " + ", ".join(f"{k} {fmt(v)}" for k, v in by.items()) +
+          f". Last run: {fmt(summary['last_run']['wall_seconds'])} s wall, "
+          f"{fmt(summary['last_run']['cpu_seconds'])} s CPU, {summary['last_run']['ran']} cases run, "
+          f"{summary['last_run']['kept']} kept from before.")
+    doc.table(["model", "placement", "exponent p (CPU ~ N^p)", "coefficient", "resolutions"],
+              [[f["model"], f["placement"], fmt(f["exponent"], 3), fmt(f["coefficient"]), f["points"]] for f in fits])
+    cpu_chart(a.out, cases, fits, doc)
+
+    doc.h(2, "Accuracy against cost")
+    doc.p("Median over the particles of |error| against the finest fem mesh, and its 90th percentile, against the "
+          "median CPU time of each model and resolution.")
+    accuracy_cost_chart(a.out, candidates, doc)
+    doc.table(["placement", "model", "resolution", "particles", "peak err median", "peak err p90",
+               "impulse err median", "impulse err p90", "CPU median (s)"],
+              [[c["placement"], c["model"], c["resolution"] or "-", c["particles"], pct(c["peak_force_err_median"]),
+                pct(c["peak_force_err_p90"]), pct(c["impulse_err_median"]), pct(c["impulse_err_p90"]),
+                fmt(c["cpu_seconds_median"])] for c in candidates])
+
+    doc.h(2, "Guidelines")
+    doc.p("For each tolerance on peak force, impulse or both, the cheapest model and resolution (lowest median CPU) "
+          "whose |error| against the finest fem mesh stays within it for half the particles (median) or for 90 % of "
+          "them (p90). 'reference' means nothing cheaper met it: the finest mesh studied is needed, and maybe a "
+          "finer one.")
+    doc.table(["placement", "metric", "tolerance", "statistic", "model", "triangles", "error", "CPU median (s)"],
+              [[g["placement"], g["metric"], pct(g["tolerance"], 0), g["statistic"], g["model"],
+                (g["resolution"] or "-") + (" (reference)" if g["is_reference"] == "true" else ""), pct(g["error"]),
+                fmt(g["cpu_seconds_median"])] for g in guidelines])
+
+    doc.h(2, "Response classes")
+    doc.p("Each resolution's force curve against its model's finest one: shifted when the cross-correlation lag "
+          "exceeds 5 % of the reference contact duration; tail when the contact lasts more than 10 % longer; "
+          "asymmetric when the skewness of the force curve (time weighted by force) differs by more than 0.3; "
+          "overlapping otherwise (criteria and reasons in docs/study.md). Classes: every label met at any coarser "
+          "resolution; coarsest: the label at the coarsest resolution.")
+    doc.table(["particle", "model", "placement", "classes", "coarsest"],
+              [[c["particle"], c["model"], c["placement"], c["classes"], c["coarsest_class"]] for c in classes])
+    counts = {}
+    for c in classification:
+        counts[c["class"]] = counts.get(c["class"], 0) + 1
+    doc.p("Resolutions by class: " + ", ".join(f"{k} {v}" for k, v in sorted(counts.items())) + ".")
+
+    doc.h(2, "Force-time curves")
+    force_overlays(a.study, a.out, cases, doc)
+
+    doc.h(2, "Cases")
+    doc.table(["particle", "model", "N", "placement", "status", "peak (N)", "impulse (N s)", "duration (s)",
+               "first contact (s)", "CPU (s)", "asperity change", "peak err", "impulse err", "peak err fem",
+               "impulse err fem"],
+              [[c["particle"], c["model"], c["resolution"] or "-", c["placement"], c["status"], fmt(c["peak_force"]),
+                fmt(c["impulse"]), fmt(c["contact_duration"]), fmt(c["first_contact_time"]), fmt(c["cpu_seconds"], 3),
+                fmt(c["max_asperity_change_rel"], 3), pct(c["peak_force_err"]), pct(c["impulse_err"]),
+                pct(c["peak_force_err_fem"]), pct(c["impulse_err_fem"])] for c in cases])
+
+    if a.stability:
+        stability_section(a.out, a.stability, doc)
+    if a.yade:
+        yade_section(a.out, a.yade, doc)
+
+    with open(os.path.join(a.out, "report.md"), "w") as fh:
+        fh.write("\n".join(doc.md) + "\n")
+    with open(os.path.join(a.out, "report.html"), "w") as fh:
+        fh.write("<!DOCTYPE html>\n<html lang=\"en\"><head><meta charset=\"utf-8\"><title>"
+                 + html.escape(f"Particle-geometry study: {summary['study']}") + "</title><style>" + CSS
+                 + "</style></head><body>\n" + "\n".join(doc.html) + "\n</body></html>\n")
+
+
+if __name__ == "__main__":
+    main()

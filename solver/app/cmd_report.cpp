@@ -1,0 +1,88 @@
+// `asperity report DIR`: the particle-geometry study's report (Markdown + HTML with matplotlib
+// charts) from the tables `asperity study` wrote, by reports/tools/study_report.py.
+#include <spawn.h>
+#include <sys/wait.h>
+
+#include <cstdio>
+#include <filesystem>
+#include <memory>
+#include <string>
+#include <vector>
+
+#include "app/commands.hpp"
+#include "core/error.hpp"
+
+extern char** environ;
+
+namespace asperity::app {
+namespace {
+namespace fs = std::filesystem;
+
+// The script ships in the source tree; the build records where (solver/CMakeLists.txt).
+const char* const kReportScript = ASPERITY_REPORT_SCRIPT;
+// Debian's interpreter, which has python3-matplotlib (a python3 earlier on PATH may not).
+const char* const kPython = "/usr/bin/python3";
+
+int run_process(const std::vector<std::string>& argv) {
+  std::vector<char*> args;
+  for (const std::string& a : argv) args.push_back(const_cast<char*>(a.c_str()));
+  args.push_back(nullptr);
+  pid_t pid = 0;
+  if (posix_spawn(&pid, args[0], nullptr, nullptr, args.data(), environ) != 0) {
+    throw std::runtime_error("cannot start " + argv[0]);
+  }
+  int status = 0;
+  if (waitpid(pid, &status, 0) < 0) throw std::runtime_error("lost " + argv[0]);
+  return WIFEXITED(status) ? WEXITSTATUS(status) : 1;
+}
+
+}  // namespace
+
+void add_report_command(CLI::App& app, Action& action) {
+  struct Args {
+    fs::path study, out, stability, yade;
+    std::string python = kPython;
+  };
+  auto args = std::make_shared<Args>();
+  auto* cmd = app.add_subcommand(
+      "report",
+      "Report of a study folder (asperity study): OUT/report.md, OUT/report.html, charts (PNG) and the tables "
+      "(CSV); adds the stability sweep and the YADE comparison when present");
+  cmd->add_option("study", args->study, "Study folder (as asperity study --out wrote it)")->required();
+  cmd->add_option("--out", args->out, "Report folder (default: the study folder)");
+  cmd->add_option("--stability", args->stability,
+                  "A stability sweep folder (asperity stability --out; default: STUDY/stability when present)");
+  cmd->add_option("--yade", args->yade,
+                  "Folder of YADE cross-checks (comparison.json files; default: reports/yade/ when present)");
+  cmd->add_option("--python", args->python, "Python with matplotlib")->capture_default_str();
+  cmd->callback([args, &action] {
+    action = [args] {
+      if (!fs::exists(args->study / "cases.csv") || !fs::exists(args->study / "study_summary.json")) {
+        throw InputError(args->study.string() + ": not a study folder (no cases.csv / study_summary.json; run "
+                                                "asperity study first)");
+      }
+      if (!args->stability.empty() && !fs::exists(args->stability / "stability.csv")) {
+        throw InputError("--stability: " + args->stability.string() + ": no stability.csv");
+      }
+      if (!fs::exists(args->python)) throw InputError("--python: " + args->python + ": no such program");
+      if (!fs::exists(kReportScript)) {
+        throw std::runtime_error(std::string("report script ") + kReportScript + " is missing (source tree moved?)");
+      }
+      const fs::path out = args->out.empty() ? args->study : args->out;
+      fs::path stability = args->stability;
+      if (stability.empty() && fs::exists(args->study / "stability" / "stability.csv")) stability = args->study / "stability";
+      fs::path yade = args->yade;
+      const fs::path default_yade = fs::path(kReportScript).parent_path().parent_path() / "yade";
+      if (yade.empty() && fs::exists(default_yade)) yade = default_yade;
+      std::vector<std::string> argv = {args->python, kReportScript, args->study.string(), "--out", out.string()};
+      if (!stability.empty()) argv.insert(argv.end(), {"--stability", stability.string()});
+      if (!yade.empty()) argv.insert(argv.end(), {"--yade", yade.string()});
+      const int rc = run_process(argv);
+      if (rc != 0) throw std::runtime_error("report script failed (exit " + std::to_string(rc) + ")");
+      std::fprintf(stderr, "report -> %s, %s\n", (out / "report.md").string().c_str(), (out / "report.html").string().c_str());
+      return kExitOk;
+    };
+  });
+}
+
+}  // namespace asperity::app

@@ -1,0 +1,58 @@
+// The particle-geometry sensitivity study (issue 7) as data: which particles, resolutions,
+// models and placements, and the impact every case repeats. Read from STUDY.json.
+#pragma once
+
+#include <filesystem>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "core/material.hpp"
+#include "core/vec.hpp"
+
+namespace asperity::study {
+
+// One particle: a generated one (from a particle set, seed and shape numbers) or a mesh file.
+struct ParticleSource {
+  std::string name;
+  std::filesystem::path file;  // mesh file; empty for a generated particle
+  double scale = 1;            // multiplies the file's coordinates
+  // Generated particles (geometry::ParticleDef fields).
+  unsigned long long seed = 0;
+  double size = 0.05, elongation = 0.75, flatness = 0.75, angularity = 0.5, roughness = 0.3;
+  long faces = 20480;
+};
+
+enum class Placement { centroid, lowest };
+const char* placement_name(Placement p);
+
+// Models a case can run: the deformable tetrahedral mesh, the rigid polyhedron, and the
+// volume-equivalent rigid sphere (same volume and mass, Hertz against the block).
+enum class ModelKind { fem, rigid, sphere };
+const char* model_name(ModelKind m);
+
+struct StudyDef {
+  std::filesystem::path file;  // where it was read from (for messages and relative paths)
+  std::string name;
+  std::vector<ParticleSource> particles;
+  std::optional<double> particle_size;  // rescale every particle to this equivalent diameter, m
+  std::vector<long> resolutions;        // surface triangles, ascending, the reference last
+  long reference = 0;                   // the finest resolution (last of `resolutions`)
+  std::vector<ModelKind> models;
+  std::vector<Placement> placements;
+  double speed = 1;                 // m/s, straight down onto the block
+  bool random_orientation = false;  // uniform random rotation per particle (seeded by its index)
+  Vec3 orientation_deg = Vec3::Zero();  // else: rotations about x, then y, then z, degrees
+  double gap = 1e-4;                // m: lowest point of the placed reference mesh above the block
+  std::optional<double> duration;   // s; empty: "auto" (per particle, see study_run.hpp)
+  double gravity = 9.81;            // m/s², along −z
+  Material material;                // the particle's
+  Material block_material;          // the block's
+  int rows = 2000;                  // about this many force rows kept per case
+  int jobs = 0;                     // worker threads; 0: every core
+};
+
+// Reads and validates STUDY.json; InputError "FILE: KEY: problem" for anything wrong.
+StudyDef load_study(const std::filesystem::path& file);
+
+}  // namespace asperity::study
