@@ -20,6 +20,7 @@ import matplotlib
 
 matplotlib.use("Agg")
 import matplotlib.pyplot as plt  # noqa: E402
+import matplotlib.ticker  # noqa: E402
 
 TABLES = ["cases.csv", "classification.csv", "particle_classes.csv", "cpu_fit.csv", "candidates.csv",
           "guidelines.csv"]
@@ -158,6 +159,7 @@ def cpu_chart(out, cases, fits, doc):
                         ls="-" if pl == "centroid" else ":", label=f"{m}, {pl}: CPU ~ N^{p:.2f}")
     ax.set_xscale("log")
     ax.set_yscale("log")
+    ax.xaxis.set_minor_formatter(matplotlib.ticker.NullFormatter())
     ax.set_xlabel("surface triangles N")
     ax.set_ylabel("CPU time per case (s)")
     ax.set_title("CPU time against resolution (median fit)")
@@ -217,76 +219,101 @@ def accuracy_cost_chart(out, candidates, doc):
               "every model and resolution, Pareto front marked (errors of 0 drawn at 1e-5)")
 
 
+def stability_files(stab_dir):
+    """stability.csv files (asperity stability --out) or map.csv files (stability maps) under stab_dir."""
+    found = []
+    for name in ("stability.csv", "map.csv"):
+        found += glob.glob(os.path.join(stab_dir, name)) + glob.glob(os.path.join(stab_dir, "*", name))
+    return sorted(set(found))
+
+
 def stability_section(out, stab_dir, doc):
-    path = os.path.join(stab_dir, "stability.csv")
-    if not os.path.exists(path):
+    files = stability_files(stab_dir)
+    if not files:
         return
-    rows = read_csv(path)
     doc.h(2, "Stability map and accuracy against step")
-    doc.p(f"From {stab_dir} (asperity stability): each time step tried, as a multiple of the predicted critical step.")
-    fig, axes = plt.subplots(1, 2, figsize=(10, 3.6))
+    doc.p(f"From {stab_dir}: each time step tried, as a multiple of the predicted critical step (asperity "
+          "stability); green stable, red flagged unstable.")
     colours = {"ok": "tab:green", "no_contact": "tab:grey", "unstable": "tab:red"}
-    for r in rows:
-        axes[0].scatter([num(r["factor"])], [max(num(r["energy_drift"]), 1e-16)],
-                        color=colours.get(r["status"], "k"), s=20)
-    for s, c in colours.items():
-        axes[0].scatter([], [], color=c, label=s)
-    axes[0].axvline(1.0, color="k", lw=0.5, ls=":")
-    axes[0].set_xscale("log")
-    axes[0].set_yscale("log")
-    axes[0].set_xlabel("dt / predicted critical step")
-    axes[0].set_ylabel("energy drift")
-    axes[0].legend(fontsize=7)
-    axes[0].set_title("stability map", fontsize=9)
-    key = "peak_force_error" if rows and "peak_force_error" in rows[0] else None
-    ok = [r for r in rows if r["status"] == "ok"]
-    if key:
-        axes[1].plot([num(r["dt"]) for r in ok], [abs(num(r[key])) for r in ok], "o-")
-        axes[1].set_ylabel("|peak force error|")
-        axes[1].set_yscale("log")
-    else:
-        axes[1].plot([num(r["dt"]) for r in ok], [num(r["peak_force"]) for r in ok], "o-")
-        axes[1].set_ylabel("peak force (N)")
-    axes[1].set_xscale("log")
-    axes[1].set_xlabel("dt (s)")
-    axes[1].set_title("accuracy against step", fontsize=9)
+    fig, axes = plt.subplots(len(files), 2, figsize=(10, 3.2 * len(files)), squeeze=False)
+    summary = []
+    for i, path in enumerate(files):
+        rows = read_csv(path)
+        label = os.path.relpath(path, stab_dir)
+        ax = axes[i][0]
+        for r in rows:
+            ax.scatter([num(r["factor"])], [max(num(r["energy_drift"]), 1e-16)], color=colours.get(r["status"], "k"),
+                       s=14)
+        ax.axvline(1.0, color="k", lw=0.5, ls=":")
+        ax.set_xscale("log")
+        ax.set_yscale("log")
+        ax.set_xlabel("dt / predicted critical step", fontsize=8)
+        ax.set_ylabel("energy drift", fontsize=8)
+        ax.set_title(f"stability map: {label}", fontsize=9)
+        ax = axes[i][1]
+        ok = [r for r in rows if r["status"] == "ok" and "peak_force_error" in r and not math.isnan(num(r["peak_force_error"]))]
+        if ok:
+            ax.scatter([num(r["factor"]) for r in ok], [max(abs(num(r["peak_force_error"])), 1e-16) for r in ok], s=14,
+                       label="peak force")
+            if "impulse_error" in ok[0]:
+                ax.scatter([num(r["factor"]) for r in ok], [max(abs(num(r["impulse_error"])), 1e-16) for r in ok],
+                           s=14, marker="^", label="impulse")
+            ax.set_yscale("log")
+            ax.legend(fontsize=7)
+        ax.set_xscale("log")
+        ax.set_xlabel("dt / predicted critical step", fontsize=8)
+        ax.set_ylabel("|relative error|", fontsize=8)
+        ax.set_title(f"accuracy against step: {label}", fontsize=9)
+        stable = [num(r["factor"]) for r in rows if r["status"] == "ok"]
+        unstable = [num(r["factor"]) for r in rows if r["status"] == "unstable"]
+        summary.append([label, len(rows), fmt(max(stable)) if stable else "-", fmt(min(unstable)) if unstable else "-"])
+        shutil.copyfile(path, os.path.join(out, "stability_" + label.replace(os.sep, "_")))
     fig.tight_layout()
-    fig.savefig(os.path.join(out, "stability.png"), dpi=80)
+    fig.savefig(os.path.join(out, "stability.png"), dpi=72)
     plt.close(fig)
     doc.image("stability.png", "Stability map and accuracy against time step")
-    header = list(rows[0].keys()) if rows else []
-    doc.table(header, [[fmt(r[h]) if h != "status" else r[h] for h in header] for r in rows])
-    shutil.copyfile(path, os.path.join(out, "stability.csv"))
+    doc.table(["sweep", "steps tried", "largest stable factor", "smallest unstable factor"], summary)
 
 
 def yade_section(out, yade_dir, doc):
+    table = os.path.join(yade_dir, "crosscheck.csv")
     files = sorted(glob.glob(os.path.join(yade_dir, "**", "comparison.json"), recursive=True))
-    if not files:
+    if not os.path.exists(table) and not files:
         return
     doc.h(2, "YADE comparison")
-    doc.p(f"From {yade_dir} (asperity crosscheck): each scene run in asperity and in YADE; relative difference "
-          "(asperity - YADE) / YADE.")
-    rows, csv_rows = [], []
+    if os.path.exists(table):
+        rows = read_csv(table)
+        shutil.copyfile(table, os.path.join(out, "yade_crosscheck.csv"))
+        doc.p(f"From {table} (asperity crosscheck, {len(rows)} cases): relative differences (asperity - YADE) / YADE, "
+              "largest magnitude per contact law, and the CPU ratio asperity/YADE. Every case: yade_crosscheck.csv.")
+        laws = sorted({r["law"] for r in rows})
+        out_rows = []
+        for law in laws:
+            rs = [r for r in rows if r["law"] == law]
+            def worst(k):
+                return fmt(max(abs(num(r[k])) for r in rs), 3)
+            ratios = sorted(num(r["ratio"]) for r in rs)
+            out_rows.append([law, len(rs), worst("peak_force_rel_diff"), worst("impulse_rel_diff"),
+                             worst("contact_duration_rel_diff"), fmt(ratios[len(ratios) // 2], 3)])
+        doc.table(["law", "cases", "max abs d peak", "max abs d impulse", "max abs d duration", "median CPU ratio"], out_rows)
+        return
+    doc.p(f"From {yade_dir} (asperity crosscheck): relative difference (asperity - YADE) / YADE.")
+    rows = []
     for f in files:
         with open(f) as fh:
             j = json.load(fh)
-        name = j.get("scene") or os.path.basename(os.path.dirname(f))
-        cells = [name]
+        cells = [j.get("scene") or os.path.basename(os.path.dirname(f))]
         for key in ("peak_force", "impulse", "contact_duration"):
-            e = j.get(key) or {}
-            a = e.get("asperity") if isinstance(e, dict) else None
-            y = e.get("yade") if isinstance(e, dict) else None
-            d = e.get("rel_diff", e.get("relative_difference")) if isinstance(e, dict) else None
-            cells += [fmt(a), fmt(y), pct(d)]
+            e = j.get(key) if isinstance(j.get(key), dict) else {}
+            cells += [fmt(e.get("asperity")), fmt(e.get("yade")), pct(e.get("rel_diff", e.get("relative_difference")))]
         rows.append(cells)
-        csv_rows.append(cells)
     header = ["scene"] + [f"{k} {w}" for k in ("peak_force", "impulse", "contact_duration")
                           for w in ("asperity", "YADE", "diff")]
     doc.table(header, rows)
     with open(os.path.join(out, "yade_comparison.csv"), "w", newline="") as fh:
         w = csv.writer(fh)
         w.writerow(header)
-        w.writerows(csv_rows)
+        w.writerows(rows)
 
 
 CSS = ("body{font-family:sans-serif;max-width:1100px;margin:2em auto;padding:0 1em;color:#222}"

@@ -51,7 +51,7 @@ void add_report_command(CLI::App& app, Action& action) {
   cmd->add_option("study", args->study, "Study folder (as asperity study --out wrote it)")->required();
   cmd->add_option("--out", args->out, "Report folder (default: the study folder)");
   cmd->add_option("--stability", args->stability,
-                  "A stability sweep folder (asperity stability --out; default: STUDY/stability when present)");
+                  "A folder of stability sweeps (stability.csv or map.csv, in it or one level down; default: STUDY/stability, else reports/stability/, when present)");
   cmd->add_option("--yade", args->yade,
                   "Folder of YADE cross-checks (comparison.json files; default: reports/yade/ when present)");
   cmd->add_option("--python", args->python, "Python with matplotlib")->capture_default_str();
@@ -61,8 +61,8 @@ void add_report_command(CLI::App& app, Action& action) {
         throw InputError(args->study.string() + ": not a study folder (no cases.csv / study_summary.json; run "
                                                 "asperity study first)");
       }
-      if (!args->stability.empty() && !fs::exists(args->stability / "stability.csv")) {
-        throw InputError("--stability: " + args->stability.string() + ": no stability.csv");
+      if (!args->stability.empty() && !fs::is_directory(args->stability)) {
+        throw InputError("--stability: " + args->stability.string() + ": no such folder");
       }
       if (!fs::exists(args->python)) throw InputError("--python: " + args->python + ": no such program");
       if (!fs::exists(kReportScript)) {
@@ -70,9 +70,11 @@ void add_report_command(CLI::App& app, Action& action) {
       }
       const fs::path out = args->out.empty() ? args->study : args->out;
       fs::path stability = args->stability;
-      if (stability.empty() && fs::exists(args->study / "stability" / "stability.csv")) stability = args->study / "stability";
+      const fs::path reports = fs::path(kReportScript).parent_path().parent_path();  // reports/
+      if (stability.empty() && fs::is_directory(args->study / "stability")) stability = args->study / "stability";
+      if (stability.empty() && fs::is_directory(reports / "stability")) stability = reports / "stability";
       fs::path yade = args->yade;
-      const fs::path default_yade = fs::path(kReportScript).parent_path().parent_path() / "yade";
+      const fs::path default_yade = reports / "yade";
       if (yade.empty() && fs::exists(default_yade)) yade = default_yade;
       std::vector<std::string> argv = {args->python, kReportScript, args->study.string(), "--out", out.string()};
       if (!stability.empty()) argv.insert(argv.end(), {"--stability", stability.string()});

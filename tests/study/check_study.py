@@ -1,0 +1,172 @@
+#!/usr/bin/python3
+"""End-to-end check of asperity study / report / recommend (tests/study/CMakeLists.txt).
+
+Usage: check_study.py ASPERITY SMOKE_STUDY.json WORK_DIR. Exit 0 when every check passes; each
+failure is printed. Leaves WORK_DIR/report/screenshot.png (the HTML report in headless Chromium).
+"""
+import csv
+import json
+import os
+import re
+import shutil
+import struct
+import subprocess
+import sys
+import tempfile
+
+binary, study_file, work = sys.argv[1], sys.argv[2], sys.argv[3]
+failures = []
+
+
+def check(name, ok, detail=""):
+    if not ok:
+        failures.append(name)
+        print(f"FAIL: {name} {detail}")
+
+
+def run(*args):
+    return subprocess.run([binary, *args], capture_output=True, text=True)
+
+
+def png_size(path):
+    """(width, height) of a PNG, or None when the file does not start as a PNG does."""
+    with open(path, "rb") as f:
+        head = f.read(24)
+    if len(head) < 24 or head[:8] != b"\x89PNG\r\n\x1a\n" or head[12:16] != b"IHDR":
+        return None
+    return struct.unpack(">II", head[16:24])
+
+
+shutil.rmtree(work, ignore_errors=True)
+os.makedirs(work)
+study = os.path.join(work, "study")
+report = os.path.join(work, "report")
+
+# 1. The study runs to the end.
+r = run("study", study_file, "--out", study, "-q")
+check("study exits 0", r.returncode == 0, r.stderr)
+with open(os.path.join(study, "study_summary.json")) as f:
+    summary = json.load(f)
+check("16 cases, all done", summary["cases"] == 16 and summary["done"] == 16 and summary["failed"] == 0, summary)
+
+# 2. Resumable: a second run keeps every case.
+r = run("study", study_file, "--out", study, "-q")
+with open(os.path.join(study, "study_summary.json")) as f:
+    again = json.load(f)
+check("rerun keeps every case", r.returncode == 0 and again["last_run"]["ran"] == 0 and again["last_run"]["kept"] == 16,
+      again["last_run"])
+
+# 3. Bad input: one line, exit 2, naming the key.
+bad = os.path.join(work, "bad.json")
+with open(study_file) as f:
+    j = json.load(f)
+j["resolution"] = [100]
+j["particles"]["set"] = os.path.join(os.path.dirname(os.path.abspath(study_file)), j["particles"]["set"])
+with open(bad, "w") as f:
+    json.dump(j, f)
+r = run("study", bad, "--out", os.path.join(work, "bad"))
+check("unknown key exits 2", r.returncode == 2, r.returncode)
+check("one line naming the key", r.stderr.count("\n") == 1 and "resolution" in r.stderr and "resolutions" in r.stderr,
+      r.stderr)
+check("nothing written for bad input", not os.path.exists(os.path.join(work, "bad")))
+
+# 4. The report: files, tables, charts, numbers equal to the cases' summary.json.
+r = run("report", study, "--out", report)
+check("report exits 0", r.returncode == 0, r.stderr)
+for name in ["report.md", "report.html", "cases.csv", "classification.csv", "particle_classes.csv", "cpu_fit.csv",
+             "candidates.csv", "guidelines.csv", "cpu_vs_resolution.png", "accuracy_vs_cost.png"]:
+    check(f"{name} present", os.path.isfile(os.path.join(report, name)) and os.path.getsize(os.path.join(report, name)) > 0)
+tables = {}
+for name in os.listdir(report):
+    if name.endswith(".csv"):
+        with open(os.path.join(report, name), newline="") as f:
+            rows = list(csv.DictReader(f))
+        check(f"{name} parses with rows", len(rows) > 0 and all(None not in r for r in rows))
+        tables[name] = rows
+pngs = [n for n in os.listdir(report) if n.endswith(".png")]
+check("a force chart per particle", sum(n.startswith("force_") for n in pngs) == 2, pngs)
+for name in pngs:
+    size = png_size(os.path.join(report, name))
+    # 200 px: the smallest chart is 6 in at 72-80 dpi; a blank or broken figure comes out tiny
+    check(f"{name} is a PNG image", size is not None and size[0] >= 200 and size[1] >= 150, size)
+cases = tables.get("cases.csv", [])
+check("cases.csv: 16 rows", len(cases) == 16, len(cases))
+keys = {"peak_force": "peak_force", "impulse": "impulse", "contact_duration": "contact_duration",
+        "first_contact_time": "first_contact_time", "cpu_seconds": "cpu_seconds_thread", "steps": "steps", "dt": "dt"}
+for row in cases:
+    folder = f"{row['model']}-{row['resolution']}-{row['placement']}"
+    with open(os.path.join(study, "cases", row["particle"], folder, "summary.json")) as f:
+        s = json.load(f)
+    for col, key in keys.items():
+        # exact: the table writes the shortest decimal that reads back to the same double
+        check(f"{row['particle']} {folder} {col} equals summary.json", float(row[col]) == float(s[key]),
+              (row[col], s[key]))
+    if row["resolution"] == "250":  # the reference of this study: its own errors are 0
+        check(f"{folder} reference error 0", float(row["peak_force_err"]) == 0.0)
+fits = tables.get("cpu_fit.csv", [])
+check("CPU fit for fem and rigid", {f["model"] for f in fits} == {"fem", "rigid"}, fits)
+with open(os.path.join(report, "report.md")) as f:
+    md = f.read()
+for f_ in fits:
+    check("report.md shows the fitted exponent", f"{float(f_['exponent']):.3g}" in md)
+for g in tables.get("guidelines.csv", []):
+    check("guideline model known", g["model"] in ("fem", "rigid", "sphere"), g)
+
+# 5. recommend: JSON on stdout, a model the study has.
+scene = {"name": "new", "gravity": [0, 0, -9.81], "duration": 0.001,
+         "materials": {"rock": {"density": 2650, "young": 5e10, "poisson": 0.25}},
+         "bodies": [{"name": "p", "material": "rock", "shape": {"type": "sphere", "radius": 0.025},
+                     "position": [0, 0, 0.03], "velocity": [0, 0, -2]},
+                    {"name": "floor", "material": "rock", "shape": {"type": "plane", "point": [0, 0, 0], "normal": [0, 0, 1]}}]}
+scene_file = os.path.join(work, "scene.json")
+with open(scene_file, "w") as f:
+    json.dump(scene, f)
+r = run("recommend", scene_file, "--tolerance", "5%", "--study", study, "-q")
+check("recommend exits 0", r.returncode == 0, r.stderr)
+try:
+    rec = json.loads(r.stdout)
+    check("recommend names a model", rec["recommendation"]["model"] in ("fem", "rigid"), rec)
+    check("recommend reads the speed", abs(rec["particle"]["speed"] - 2.0) < 1e-12, rec["particle"])
+except (json.JSONDecodeError, KeyError) as e:
+    check("recommend writes JSON", False, e)
+r = run("recommend", scene_file, "--tolerance", "five", "--study", study)
+check("bad tolerance exits 2", r.returncode == 2, r.returncode)
+
+# 6. The HTML in headless Chromium: no console errors, a screenshot.
+chromium = shutil.which("chromium")
+check("chromium installed (deps/debian-packages.txt)", chromium is not None)
+
+
+def browse(html_file, shot):
+    profile = tempfile.mkdtemp()
+    try:
+        p = subprocess.run([chromium, "--headless", "--no-sandbox", "--disable-gpu", "--disable-background-networking",
+                            "--disable-component-update", "--disable-sync", "--no-first-run",
+                            f"--user-data-dir={profile}", "--enable-logging=stderr", "--v=0",
+                            "--window-size=1200,2000", f"--screenshot={shot}", "file://" + os.path.abspath(html_file)],
+                           capture_output=True, text=True, timeout=120)
+    finally:
+        shutil.rmtree(profile, ignore_errors=True)
+    # Chromium logs a page's console messages as "...:CONSOLE(line)] ..."; errors and uncaught
+    # exceptions carry ERROR, or the level in the message for newer builds.
+    return [l for l in p.stderr.splitlines() if "CONSOLE" in l and ("ERROR" in l or "error" in l.lower())]
+
+
+if chromium:
+    # The detector itself: a page that logs an error must be caught.
+    probe = os.path.join(work, "probe.html")
+    with open(probe, "w") as f:
+        f.write("<!DOCTYPE html><html><body><script>console.error('probe error'); undefined_call();</script></body></html>")
+    check("console error detector catches a bad page", len(browse(probe, os.path.join(work, "probe.png"))) > 0)
+    shot = os.path.join(report, "screenshot.png")
+    errors = browse(os.path.join(report, "report.html"), shot)
+    check("report.html: no console errors", not errors, errors)
+    size = png_size(shot) if os.path.exists(shot) else None
+    check("screenshot taken", size is not None and size[0] >= 800, size)
+    with open(os.path.join(report, "report.html")) as f:
+        page = f.read()
+    check("HTML self-contained (no external scripts, styles or fonts)",
+          not re.search(r"<script|<link|https?://|@import|@font-face", page, re.I))
+
+print(f"{'FAILED' if failures else 'passed'}: {len(failures)} failure(s)")
+sys.exit(1 if failures else 0)
