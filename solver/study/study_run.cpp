@@ -428,16 +428,17 @@ StudyOutcome run_study(const StudyDef& def, const fs::path& out, const StudyRunO
   for (auto& [name, pp] : plans) {
     if (!pp.mesh_error.empty()) continue;
     // "auto": the latest first contact of any of the particle's cases (its largest starting gap
-    // at the launch speed; gravity only shortens it) plus 2.5 Hertz contact times of the
-    // equivalent sphere. The contacts measured in the pilot of the default study lasted 0.6–0.8
-    // of that time (the potential law's corner contacts are stiff); 2.5 leaves room for the
-    // tails coarse meshes grow and for a second touch after a rotation (docs/study.md).
+    // at the launch speed; gravity only shortens it) plus 1.5 Hertz contact times of the
+    // equivalent sphere. The contacts measured in the pilot studies (ballast and rock, 100–1000
+    // triangles, fem and rigid, 1–2 m/s) lasted 0.5–1.0 of that time (the potential law's
+    // corner contacts are stiff); 1.5 leaves half as much again for the tails of coarse meshes
+    // (docs/study.md). The window is the cost: every step before and after contact counts.
     pp.contact_time = hertz_contact_time(pp.radius, pp.mass, e_star, def.speed);
     double max_gap = 0;
     for (const CaseKey& c : cases) {
       if (c.particle == name) max_gap = std::max(max_gap, start_height(def, pp, c).second);
     }
-    pp.duration = def.duration ? *def.duration : max_gap / def.speed + 2.5 * pp.contact_time;
+    pp.duration = def.duration ? *def.duration : max_gap / def.speed + 1.5 * pp.contact_time;
   }
 
   // 4. Cases, longest first.

@@ -209,7 +209,7 @@ StudyTables write_tables(const StudyDef& def, const fs::path& dir, const StudyOu
       "particle", "model", "resolution", "placement", "status", "peak_force", "impulse", "contact_duration",
       "first_contact_time", "cpu_seconds", "steps", "dt", "start_gap", "volume_change_rel", "centroid_shift_rel",
       "max_asperity_rel", "max_asperity_change_rel", "peak_force_err", "impulse_err", "contact_duration_err",
-      "first_contact_shift", "peak_force_err_fem", "impulse_err_fem", "message"};
+      "first_contact_shift", "peak_force_err_fem", "impulse_err_fem", "open_at_end", "message"};
   std::vector<std::vector<OJson>> case_rows;
   struct ErrRow {
     double peak = std::nan(""), impulse = std::nan("");
@@ -233,6 +233,13 @@ StudyTables write_tables(const StudyDef& def, const fs::path& dir, const StudyOu
       err_fem[i].impulse = rel_err(c.summary["impulse"], fem->summary["impulse"]);
     }
     const bool has_mesh = k.model != ModelKind::sphere && c.mesh.is_object();
+    // A contact still open at the end of the window: its duration and impulse are cut short
+    // (the "auto" duration should prevent it; a given duration may not).
+    OJson open_at_end;
+    if (ok) {
+      const Curve curve = read_force(c.dir / "force.csv");
+      open_at_end = !curve.f.empty() && curve.f.back() > 0;
+    }
     case_rows.push_back({k.particle, model_name(k.model), k.model == ModelKind::sphere ? OJson() : OJson(k.resolution),
                          placement_name(k.placement), c.status, num_or_null(c.summary, "peak_force"),
                          num_or_null(c.summary, "impulse"), num_or_null(c.summary, "contact_duration"),
@@ -243,7 +250,7 @@ StudyTables write_tables(const StudyDef& def, const fs::path& dir, const StudyOu
                          has_mesh ? num_or_null(c.mesh, "max_asperity_rel") : OJson(),
                          has_mesh ? num_or_null(c.mesh, "max_asperity_change_rel") : OJson(), finite_or_null(pe),
                          finite_or_null(ie), finite_or_null(de), finite_or_null(fs_), finite_or_null(err_fem[i].peak),
-                         finite_or_null(err_fem[i].impulse), c.message.empty() ? OJson() : OJson(c.message)});
+                         finite_or_null(err_fem[i].impulse), open_at_end, c.message.empty() ? OJson() : OJson(c.message)});
   }
   io::write_atomically(dir / "cases.csv", csv(case_header, case_rows));
 
