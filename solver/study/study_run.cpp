@@ -145,11 +145,12 @@ class Progress {
  public:
   Progress(bool quiet, std::string what, int total, double total_weight)
       : quiet_(quiet), tty_(isatty(2) != 0), what_(std::move(what)), total_(total), total_weight_(total_weight) {}
-  void done(double weight, const std::string& last, bool failed) {
+  // `kept`: done by an earlier run; it leaves the time-left estimate (its weight took no time).
+  void done(double weight, const std::string& last, bool failed, bool kept = false) {
     std::lock_guard<std::mutex> lock(mutex_);
     ++count_;
     failed_ += failed ? 1 : 0;
-    weight_ += weight;
+    (kept ? total_weight_ -= weight : weight_ += weight);
     if (quiet_) return;
     const double el = elapsed();
     if (!tty_ && el - last_print_ < 10 && count_ < total_) return;
@@ -378,7 +379,7 @@ StudyOutcome run_study(const StudyDef& def, const fs::path& out, const StudyRunO
         if (fs::exists(report)) {
           const io::Json j = io::read_json_file(report);
           if (j.value("study_source", "") == tags[t.particle] && j.contains("dt_estimate_rigid")) {
-            progress.done(1, p.name + " " + std::to_string(t.faces) + " (kept)", false);
+            progress.done(1, p.name + " " + std::to_string(t.faces) + " (kept)", false, true);
             return;
           }
         }
@@ -504,7 +505,7 @@ StudyOutcome run_study(const StudyDef& def, const fs::path& out, const StudyRunO
     }
     char buf[64];
     std::snprintf(buf, sizeof buf, " %.2f s", cpu);
-    progress.done(case_weight(c), label + (failed ? " FAILED" : skipped ? " (done before)" : buf), failed);
+    progress.done(case_weight(c), label + (failed ? " FAILED" : skipped ? " (done before)" : buf), failed, skipped);
   });
   outcome.wall_seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - wall0).count();
   return outcome;
