@@ -44,44 +44,57 @@ void add_report_command(CLI::App& app, Action& action) {
     std::string python = kPython;
   };
   auto args = std::make_shared<Args>();
-  auto* cmd = app.add_subcommand(
-      "report",
-      "Report of a study folder (asperity study): OUT/report.md, OUT/report.html, charts (PNG) and the tables "
-      "(CSV); adds the stability sweep and the YADE comparison when present");
-  cmd->add_option("study", args->study, "Study folder (as asperity study --out wrote it)")->required();
+  auto* cmd =
+      app.add_subcommand("report",
+                         "Report of a study folder (asperity study): OUT/report.md, "
+                         "OUT/report.html, charts (PNG) and the tables "
+                         "(CSV); adds the stability sweep and the YADE comparison when present");
+  cmd->add_option("study", args->study, "Study folder (as asperity study --out wrote it)")
+      ->required();
   cmd->add_option("--out", args->out, "Report folder (default: the study folder)");
   cmd->add_option("--stability", args->stability,
-                  "A folder of stability sweeps (stability.csv or map.csv, in it or one level down; default: STUDY/stability, else reports/stability/, when present)");
-  cmd->add_option("--yade", args->yade,
-                  "Folder of YADE cross-checks (comparison.json files; default: reports/yade/ when present)");
+                  "A folder of stability sweeps (stability.csv or map.csv, in it or one level "
+                  "down; default: STUDY/stability, else reports/stability/, when present)");
+  cmd->add_option(
+      "--yade", args->yade,
+      "Folder of YADE cross-checks (comparison.json files; default: reports/yade/ when present)");
   cmd->add_option("--python", args->python, "Python with matplotlib")->capture_default_str();
   cmd->callback([args, &action] {
     action = [args] {
-      if (!fs::exists(args->study / "cases.csv") || !fs::exists(args->study / "study_summary.json")) {
-        throw InputError(args->study.string() + ": not a study folder (no cases.csv / study_summary.json; run "
-                                                "asperity study first)");
+      if (!fs::exists(args->study / "cases.csv") ||
+          !fs::exists(args->study / "study_summary.json")) {
+        throw InputError(args->study.string() +
+                         ": not a study folder (no cases.csv / study_summary.json; run "
+                         "asperity study first)");
       }
       if (!args->stability.empty() && !fs::is_directory(args->stability)) {
         throw InputError("--stability: " + args->stability.string() + ": no such folder");
       }
-      if (!fs::exists(args->python)) throw InputError("--python: " + args->python + ": no such program");
+      if (!fs::exists(args->python))
+        throw InputError("--python: " + args->python + ": no such program");
       if (!fs::exists(kReportScript)) {
-        throw std::runtime_error(std::string("report script ") + kReportScript + " is missing (source tree moved?)");
+        throw std::runtime_error(std::string("report script ") + kReportScript +
+                                 " is missing (source tree moved?)");
       }
       const fs::path out = args->out.empty() ? args->study : args->out;
       fs::path stability = args->stability;
       const fs::path reports = fs::path(kReportScript).parent_path().parent_path();  // reports/
-      if (stability.empty() && fs::is_directory(args->study / "stability")) stability = args->study / "stability";
-      if (stability.empty() && fs::is_directory(reports / "stability")) stability = reports / "stability";
+      if (stability.empty() && fs::is_directory(args->study / "stability"))
+        stability = args->study / "stability";
+      if (stability.empty() && fs::is_directory(reports / "stability"))
+        stability = reports / "stability";
       fs::path yade = args->yade;
       const fs::path default_yade = reports / "yade";
       if (yade.empty() && fs::exists(default_yade)) yade = default_yade;
-      std::vector<std::string> argv = {args->python, kReportScript, args->study.string(), "--out", out.string()};
+      std::vector<std::string> argv = {args->python, kReportScript, args->study.string(), "--out",
+                                       out.string()};
       if (!stability.empty()) argv.insert(argv.end(), {"--stability", stability.string()});
       if (!yade.empty()) argv.insert(argv.end(), {"--yade", yade.string()});
       const int rc = run_process(argv);
-      if (rc != 0) throw std::runtime_error("report script failed (exit " + std::to_string(rc) + ")");
-      std::fprintf(stderr, "report -> %s, %s\n", (out / "report.md").string().c_str(), (out / "report.html").string().c_str());
+      if (rc != 0)
+        throw std::runtime_error("report script failed (exit " + std::to_string(rc) + ")");
+      std::fprintf(stderr, "report -> %s, %s\n", (out / "report.md").string().c_str(),
+                   (out / "report.html").string().c_str());
       return kExitOk;
     };
   });

@@ -29,20 +29,24 @@ double parse_tolerance(const std::string& text, const std::string& key) {
     used = 0;
   }
   if (used == 0 || used != t.size() || !std::isfinite(v)) {
-    throw InputError(key + ": must be a fraction or a percentage such as 5% (got \"" + text + "\")");
+    throw InputError(key + ": must be a fraction or a percentage such as 5% (got \"" + text +
+                     "\")");
   }
   v *= scale;
   if (!(v > 0 && v < 1)) throw InputError(key + ": must lie in (0, 100%) (got \"" + text + "\")");
   return v;
 }
 
-OJson recommend(const fs::path& scene_file, const fs::path& guidelines_file, const RecommendOptions& o) {
+OJson recommend(const fs::path& scene_file, const fs::path& guidelines_file,
+                const RecommendOptions& o) {
   const scene::SceneDef s = scene::load_scene(scene_file);
   // The particle: the recorded body when it moves, else the first free body.
   int body = s.record.body;
   if (body < 0 || s.bodies[body].fixed) {
-    const auto it = std::find_if(s.bodies.begin(), s.bodies.end(), [](const scene::BodyDef& b) { return !b.fixed; });
-    if (it == s.bodies.end()) throw InputError(scene_file.string() + ": bodies: no free body (a particle) to advise on");
+    const auto it = std::find_if(s.bodies.begin(), s.bodies.end(),
+                                 [](const scene::BodyDef& b) { return !b.fixed; });
+    if (it == s.bodies.end())
+      throw InputError(scene_file.string() + ": bodies: no free body (a particle) to advise on");
     body = static_cast<int>(it - s.bodies.begin());
   }
   const scene::BodyDef& b = s.bodies[body];
@@ -58,7 +62,8 @@ OJson recommend(const fs::path& scene_file, const fs::path& guidelines_file, con
     diameter = 2 * geometry::prepare_particle(m->file, po).source_props.equivalent_radius;
     shape = "mesh";
   } else {
-    throw InputError(scene_file.string() + ": bodies[" + std::to_string(body) + "]: a free plane or box is no particle");
+    throw InputError(scene_file.string() + ": bodies[" + std::to_string(body) +
+                     "]: a free plane or box is no particle");
   }
   const double speed = b.velocity.norm();
 
@@ -66,14 +71,17 @@ OJson recommend(const fs::path& scene_file, const fs::path& guidelines_file, con
   const io::JsonReader gr(g, guidelines_file, "");
   const io::JsonReader rows = gr.child("rows");
   const std::size_t n = rows.require_array();
-  if (n == 0) throw InputError(guidelines_file.string() + ": rows: empty (the study has no fem reference)");
+  if (n == 0)
+    throw InputError(guidelines_file.string() + ": rows: empty (the study has no fem reference)");
   const std::string placement = o.placement.empty() ? rows.at(0).string("placement") : o.placement;
   // The largest tolerance of the table not above the one asked for (conservative).
   const io::Json* best = nullptr;
   double applied = 0;
   for (std::size_t i = 0; i < n; ++i) {
     const io::Json& r = g["rows"][i];
-    if (r.at("placement") != placement || r.at("metric") != o.metric || r.at("statistic") != o.statistic) continue;
+    if (r.at("placement") != placement || r.at("metric") != o.metric ||
+        r.at("statistic") != o.statistic)
+      continue;
     const double t = r.at("tolerance").get<double>();
     if (t <= o.tolerance * (1 + 1e-12) && t > applied) {
       applied = t;
@@ -89,14 +97,20 @@ OJson recommend(const fs::path& scene_file, const fs::path& guidelines_file, con
            {"cpu_seconds_median_in_study", (*best)["cpu_seconds_median"]},
            {"is_reference", (*best)["is_reference"]}};
     if ((*best)["is_reference"].get<bool>()) {
-      notes.push_back("only the study's finest fem mesh met this tolerance: a finer mesh may be needed");
+      notes.push_back(
+          "only the study's finest fem mesh met this tolerance: a finer mesh may be needed");
     }
   } else {
     const io::Json& ref = g["reference"];
-    rec = {{"model", ref["model"]}, {"resolution", ref["resolution"]}, {"expected_error", nullptr},
-           {"cpu_seconds_median_in_study", nullptr}, {"is_reference", true}};
-    notes.push_back("the tolerance is tighter than every guideline (the smallest is 2%): the study's reference, and "
-                    "a convergence check of your own");
+    rec = {{"model", ref["model"]},
+           {"resolution", ref["resolution"]},
+           {"expected_error", nullptr},
+           {"cpu_seconds_median_in_study", nullptr},
+           {"is_reference", true}};
+    notes.push_back(
+        "the tolerance is tighter than every guideline (the smallest is 2%): the study's "
+        "reference, and "
+        "a convergence check of your own");
   }
   OJson change;
   const std::string model = rec["model"].get<std::string>();
@@ -110,27 +124,36 @@ OJson recommend(const fs::path& scene_file, const fs::path& guidelines_file, con
   bool in_size = true, in_speed = true;
   if (range.is_array() && range.size() == 2) {
     in_size = diameter >= range[0].get<double>() / 1.5 && diameter <= range[1].get<double>() * 1.5;
-    if (!in_size) notes.push_back("the particle's size lies outside the study's range (x1.5): the guideline is extrapolated");
+    if (!in_size)
+      notes.push_back(
+          "the particle's size lies outside the study's range (x1.5): the guideline is "
+          "extrapolated");
   }
   if (study_speed > 0) {
     in_speed = speed >= study_speed / 2 && speed <= study_speed * 2;
-    if (!in_speed) notes.push_back("the impact speed lies outside half to twice the study's: the guideline is extrapolated");
+    if (!in_speed)
+      notes.push_back(
+          "the impact speed lies outside half to twice the study's: the guideline is extrapolated");
   }
   if (shape == "sphere" && model != "sphere") {
-    notes.push_back("the scene's particle is a sphere: the guideline is for irregular particles; mesh the real shape");
+    notes.push_back(
+        "the scene's particle is a sphere: the guideline is for irregular particles; mesh the real "
+        "shape");
   }
-  return {{"scene", scene_file.string()},
-          {"guidelines", guidelines_file.string()},
-          {"particle", {{"body", b.name}, {"shape", shape}, {"equivalent_diameter", diameter}, {"speed", speed}}},
-          {"tolerance", o.tolerance},
-          {"applied_tolerance", best ? OJson(applied) : OJson()},
-          {"metric", o.metric},
-          {"statistic", o.statistic},
-          {"placement", placement},
-          {"recommendation", rec},
-          {"scene_change", change},
-          {"within_study_range", {{"size", in_size}, {"speed", in_speed}}},
-          {"notes", notes}};
+  return {
+      {"scene", scene_file.string()},
+      {"guidelines", guidelines_file.string()},
+      {"particle",
+       {{"body", b.name}, {"shape", shape}, {"equivalent_diameter", diameter}, {"speed", speed}}},
+      {"tolerance", o.tolerance},
+      {"applied_tolerance", best ? OJson(applied) : OJson()},
+      {"metric", o.metric},
+      {"statistic", o.statistic},
+      {"placement", placement},
+      {"recommendation", rec},
+      {"scene_change", change},
+      {"within_study_range", {{"size", in_size}, {"speed", in_speed}}},
+      {"notes", notes}};
 }
 
 }  // namespace asperity::study

@@ -11,10 +11,10 @@
 namespace asperity::study {
 
 struct RecommendOptions {
-  double tolerance = 0.05;              // relative, e.g. 0.05 for "5%"
+  double tolerance = 0.05;                    // relative, e.g. 0.05 for "5%"
   std::string metric = "peak_force+impulse";  // "peak_force", "impulse" or both
-  std::string statistic = "p90";        // "median" or "p90" over the study's particles
-  std::string placement;                // "" : the guideline file's first
+  std::string statistic = "p90";              // "median" or "p90" over the study's particles
+  std::string placement;                      // "" : the guideline file's first
 };
 
 // "5%" → 0.05, "0.05" → 0.05; InputError naming `key` otherwise or outside (0, 1).
@@ -22,7 +22,8 @@ double parse_tolerance(const std::string& text, const std::string& key);
 
 // The recommendation as JSON (docs/study.md, "recommend"). InputError for a scene without a
 // free particle or guidelines without a matching row.
-nlohmann::ordered_json recommend(const std::filesystem::path& scene_file, const std::filesystem::path& guidelines_file,
+nlohmann::ordered_json recommend(const std::filesystem::path& scene_file,
+                                 const std::filesystem::path& guidelines_file,
                                  const RecommendOptions& options);
 
 }  // namespace asperity::study

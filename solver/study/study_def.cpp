@@ -12,13 +12,18 @@ namespace fs = std::filesystem;
 using io::Json;
 using io::JsonReader;
 
-const char* placement_name(Placement p) { return p == Placement::centroid ? "centroid" : "lowest"; }
+const char* placement_name(Placement p) {
+  return p == Placement::centroid ? "centroid" : "lowest";
+}
 
 const char* model_name(ModelKind m) {
   switch (m) {
-    case ModelKind::fem: return "fem";
-    case ModelKind::rigid: return "rigid";
-    case ModelKind::sphere: return "sphere";
+    case ModelKind::fem:
+      return "fem";
+    case ModelKind::rigid:
+      return "rigid";
+    case ModelKind::sphere:
+      return "sphere";
   }
   return "?";
 }
@@ -64,7 +69,8 @@ void read_set(const JsonReader& p, const fs::path& base, std::vector<ParticleSou
     s.name = r.string("name");
     if (!names.empty() && std::find(names.begin(), names.end(), s.name) == names.end()) continue;
     if (names.empty() && out.size() >= count) break;
-    s.seed = static_cast<unsigned long long>(r.integer("seed", 0, std::numeric_limits<long long>::max()));
+    s.seed = static_cast<unsigned long long>(
+        r.integer("seed", 0, std::numeric_limits<long long>::max()));
     s.size = r.number_or("size", s.size);
     s.elongation = r.number_or("elongation", s.elongation);
     s.flatness = r.number_or("flatness", s.flatness);
@@ -151,10 +157,14 @@ StudyDef load_study(const fs::path& file) {
     for (std::size_t i = 0, n = list.require_array(); i < n; ++i) {
       const Json& v = list.at(i).value();
       const std::string m = v.is_string() ? v.get<std::string>() : "";
-      if (m == "fem") s.models.push_back(ModelKind::fem);
-      else if (m == "rigid") s.models.push_back(ModelKind::rigid);
-      else if (m == "sphere") s.models.push_back(ModelKind::sphere);
-      else list.at(i).fail("", "must be \"fem\", \"rigid\" or \"sphere\" (got " + v.dump() + ")");
+      if (m == "fem")
+        s.models.push_back(ModelKind::fem);
+      else if (m == "rigid")
+        s.models.push_back(ModelKind::rigid);
+      else if (m == "sphere")
+        s.models.push_back(ModelKind::sphere);
+      else
+        list.at(i).fail("", "must be \"fem\", \"rigid\" or \"sphere\" (got " + v.dump() + ")");
     }
     if (s.models.empty()) list.fail("", "must list at least one model");
   }
@@ -165,9 +175,12 @@ StudyDef load_study(const fs::path& file) {
     for (std::size_t i = 0, n = list.require_array(); i < n; ++i) {
       const Json& v = list.at(i).value();
       const std::string m = v.is_string() ? v.get<std::string>() : "";
-      if (m == "centroid") s.placements.push_back(Placement::centroid);
-      else if (m == "lowest") s.placements.push_back(Placement::lowest);
-      else list.at(i).fail("", "must be \"centroid\" or \"lowest\" (got " + v.dump() + ")");
+      if (m == "centroid")
+        s.placements.push_back(Placement::centroid);
+      else if (m == "lowest")
+        s.placements.push_back(Placement::lowest);
+      else
+        list.at(i).fail("", "must be \"centroid\" or \"lowest\" (got " + v.dump() + ")");
     }
     if (s.placements.empty()) list.fail("", "must list at least one placement");
   }
@@ -176,7 +189,9 @@ StudyDef load_study(const fs::path& file) {
   if (r.has("orientation")) {
     const Json& o = r.value()["orientation"];
     if (o.is_string()) {
-      if (o != "random") r.fail("orientation", "must be [rx, ry, rz] in degrees or \"random\" (got " + o.dump() + ")");
+      if (o != "random")
+        r.fail("orientation",
+               "must be [rx, ry, rz] in degrees or \"random\" (got " + o.dump() + ")");
       s.random_orientation = true;
     } else {
       s.orientation_deg = r.vec3("orientation");
@@ -188,10 +203,12 @@ StudyDef load_study(const fs::path& file) {
     if (!(d.is_string() && d == "auto")) s.duration = r.in_range("duration", 0, 100, true, false);
   }
   if (r.has("gravity")) s.gravity = r.in_range("gravity", 0, 1000, false, false);
-  const Material rock{.name = "particle", .density = 2650, .young = 5e10, .poisson = 0.25, .friction = 0};
+  const Material rock{
+      .name = "particle", .density = 2650, .young = 5e10, .poisson = 0.25, .friction = 0};
   s.material = r.has("material") ? read_material(r.child("material"), "particle", rock) : rock;
   s.material.name = "particle";
-  s.block_material = r.has("block_material") ? read_material(r.child("block_material"), "block", rock) : rock;
+  s.block_material =
+      r.has("block_material") ? read_material(r.child("block_material"), "block", rock) : rock;
   s.block_material.name = "block";
   if (r.has("rows")) s.rows = static_cast<int>(r.integer("rows", 10, 1'000'000));
   if (r.has("jobs")) s.jobs = static_cast<int>(r.integer("jobs", 0, 1024));

@@ -43,13 +43,13 @@ struct StudyDef {
   double speed = 1;                 // m/s, straight down onto the block
   bool random_orientation = false;  // uniform random rotation per particle (seeded by its index)
   Vec3 orientation_deg = Vec3::Zero();  // else: rotations about x, then y, then z, degrees
-  double gap = 1e-4;                // m: lowest point of the placed reference mesh above the block
-  std::optional<double> duration;   // s; empty: "auto" (per particle, see study_run.hpp)
-  double gravity = 9.81;            // m/s², along −z
-  Material material;                // the particle's
-  Material block_material;          // the block's
-  int rows = 2000;                  // about this many force rows kept per case
-  int jobs = 0;                     // worker threads; 0: every core
+  double gap = 1e-4;               // m: lowest point of the placed reference mesh above the block
+  std::optional<double> duration;  // s; empty: "auto" (per particle, see study_run.hpp)
+  double gravity = 9.81;           // m/s², along −z
+  Material material;               // the particle's
+  Material block_material;         // the block's
+  int rows = 2000;                 // about this many force rows kept per case
+  int jobs = 0;                    // worker threads; 0: every core
 };
 
 // Reads and validates STUDY.json; InputError "FILE: KEY: problem" for anything wrong.

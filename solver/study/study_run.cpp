@@ -61,7 +61,8 @@ Mat3 orientation_matrix(const StudyDef& def, std::size_t index) {
     geometry::SplitMix64 rng{0x5eedULL + 7919ULL * index};
     const double u1 = rng.uniform(), u2 = rng.uniform(), u3 = rng.uniform();
     const double a = std::sqrt(1 - u1), b = std::sqrt(u1), tau = 2 * std::numbers::pi;
-    const Quat q(b * std::cos(tau * u3), a * std::sin(tau * u2), a * std::cos(tau * u2), b * std::sin(tau * u3));
+    const Quat q(b * std::cos(tau * u3), a * std::sin(tau * u2), a * std::cos(tau * u2),
+                 b * std::sin(tau * u3));
     return q.normalized().toRotationMatrix();
   }
   const Vec3 r = def.orientation_deg * (std::numbers::pi / 180);
@@ -77,8 +78,8 @@ std::string source_tag(const StudyDef& def, const ParticleSource& p, std::size_t
   s.precision(17);
   if (p.file.empty()) {
     s << "generated seed=" << p.seed << " size=" << p.size << " elongation=" << p.elongation
-      << " flatness=" << p.flatness << " angularity=" << p.angularity << " roughness=" << p.roughness
-      << " faces=" << p.faces;
+      << " flatness=" << p.flatness << " angularity=" << p.angularity
+      << " roughness=" << p.roughness << " faces=" << p.faces;
   } else {
     s << "file=" << fs::absolute(p.file).string() << " scale=" << p.scale
       << " mtime=" << fs::last_write_time(p.file).time_since_epoch().count();
@@ -87,7 +88,8 @@ std::string source_tag(const StudyDef& def, const ParticleSource& p, std::size_t
   if (def.random_orientation) {
     s << " orientation=random#" << index;
   } else {
-    s << " orientation=" << def.orientation_deg.x() << "," << def.orientation_deg.y() << "," << def.orientation_deg.z();
+    s << " orientation=" << def.orientation_deg.x() << "," << def.orientation_deg.y() << ","
+      << def.orientation_deg.z();
   }
   return s.str();
 }
@@ -97,8 +99,13 @@ std::string source_tag(const StudyDef& def, const ParticleSource& p, std::size_t
 SurfaceMesh make_source(const StudyDef& def, const ParticleSource& p, std::size_t index) {
   SurfaceMesh m;
   if (p.file.empty()) {
-    geometry::ParticleDef d{.seed = p.seed, .size = p.size, .elongation = p.elongation, .flatness = p.flatness,
-                            .angularity = p.angularity, .roughness = p.roughness, .faces = p.faces};
+    geometry::ParticleDef d{.seed = p.seed,
+                            .size = p.size,
+                            .elongation = p.elongation,
+                            .flatness = p.flatness,
+                            .angularity = p.angularity,
+                            .roughness = p.roughness,
+                            .faces = p.faces};
     if (const std::string problem = geometry::particle_def_problem(d); !problem.empty()) {
       throw InputError(def.file.string() + ": particles: \"" + p.name + "\": " + problem);
     }
@@ -133,7 +140,8 @@ void parallel_for(int n, int jobs, const std::function<void(int)>& run) {
 std::string clock_text(double s) {
   char buf[32];
   if (s >= 3600) {
-    std::snprintf(buf, sizeof buf, "%dh%02dm", static_cast<int>(s / 3600), static_cast<int>(s / 60) % 60);
+    std::snprintf(buf, sizeof buf, "%dh%02dm", static_cast<int>(s / 3600),
+                  static_cast<int>(s / 60) % 60);
   } else {
     std::snprintf(buf, sizeof buf, "%dm%02ds", static_cast<int>(s / 60), static_cast<int>(s) % 60);
   }
@@ -144,7 +152,11 @@ std::string clock_text(double s) {
 class Progress {
  public:
   Progress(bool quiet, std::string what, int total, double total_weight)
-      : quiet_(quiet), tty_(isatty(2) != 0), what_(std::move(what)), total_(total), total_weight_(total_weight) {}
+      : quiet_(quiet),
+        tty_(isatty(2) != 0),
+        what_(std::move(what)),
+        total_(total),
+        total_weight_(total_weight) {}
   // `kept`: done by an earlier run; it leaves the time-left estimate (its weight took no time).
   void done(double weight, const std::string& last, bool failed, bool kept = false) {
     std::lock_guard<std::mutex> lock(mutex_);
@@ -156,8 +168,9 @@ class Progress {
     if (!tty_ && el - last_print_ < 10 && count_ < total_) return;
     last_print_ = el;
     const double left = weight_ > 0 ? el * (total_weight_ - weight_) / weight_ : 0;
-    std::fprintf(stderr, "%s%s [%d/%d]%s  %s elapsed, ~%s left  (%s)%s", tty_ ? "\r\033[K" : "", what_.c_str(),
-                 count_, total_, failed_ > 0 ? (" " + std::to_string(failed_) + " failed").c_str() : "",
+    std::fprintf(stderr, "%s%s [%d/%d]%s  %s elapsed, ~%s left  (%s)%s", tty_ ? "\r\033[K" : "",
+                 what_.c_str(), count_, total_,
+                 failed_ > 0 ? (" " + std::to_string(failed_) + " failed").c_str() : "",
                  clock_text(el).c_str(), clock_text(left).c_str(), last.c_str(), tty_ ? "" : "\n");
     if (tty_ && count_ == total_) std::fprintf(stderr, "\n");
   }
@@ -182,15 +195,19 @@ class Progress {
 double case_weight(const CaseKey& c) {
   const double n = std::pow(static_cast<double>(c.resolution) / 100.0, 1.4);
   switch (c.model) {
-    case ModelKind::fem: return n;
-    case ModelKind::rigid: return 0.5 * n;
-    case ModelKind::sphere: return 0.01;
+    case ModelKind::fem:
+      return n;
+    case ModelKind::rigid:
+      return 0.5 * n;
+    case ModelKind::sphere:
+      return 0.01;
   }
   return 1;
 }
 
 OJson material_json(const Material& m) {
-  return {{"density", m.density}, {"young", m.young}, {"poisson", m.poisson}, {"friction", m.friction}};
+  return {
+      {"density", m.density}, {"young", m.young}, {"poisson", m.poisson}, {"friction", m.friction}};
 }
 
 fs::path mesh_dir(const fs::path& out, const std::string& particle, long faces) {
@@ -199,7 +216,7 @@ fs::path mesh_dir(const fs::path& out, const std::string& particle, long faces) 
 
 // Per particle, from its meshes: where each case starts and how long every case runs.
 struct ParticlePlan {
-  std::map<long, double> centroid_height;  // centroid above the lowest vertex, per resolution, m
+  std::map<long, double> centroid_height;   // centroid above the lowest vertex, per resolution, m
   std::map<long, double> dt_fem, dt_rigid;  // estimated steps (for the rows kept), s
   double radius = 0, mass = 0;              // volume-equivalent sphere of the reference mesh
   double duration = 0, contact_time = 0;    // s
@@ -213,12 +230,14 @@ struct ParticlePlan {
 // as well as lose its lowest asperity. "lowest": each mesh's own lowest point `gap` above the
 // block. The sphere's centre goes where the particle's centroid is, but never closer than `gap`
 // to the block.
-std::pair<double, double> start_height(const StudyDef& def, const ParticlePlan& pp, const CaseKey& c) {
+std::pair<double, double> start_height(const StudyDef& def, const ParticlePlan& pp,
+                                       const CaseKey& c) {
   double reach = 0;
   for (const auto& [n, h] : pp.centroid_height) reach = std::max(reach, h);
   const double ref = def.gap + reach;
   if (c.model == ModelKind::sphere) {
-    const double z = c.placement == Placement::centroid ? std::max(ref, def.gap + pp.radius) : def.gap + pp.radius;
+    const double z = c.placement == Placement::centroid ? std::max(ref, def.gap + pp.radius)
+                                                        : def.gap + pp.radius;
     return {z, z - pp.radius};
   }
   const double h = pp.centroid_height.at(c.resolution);
@@ -229,13 +248,15 @@ std::pair<double, double> start_height(const StudyDef& def, const ParticlePlan& 
 OJson case_scene(const StudyDef& def, const ParticlePlan& pp, const CaseKey& c) {
   const auto [z, gap] = start_height(def, pp, c);
   (void)gap;
-  const double half = 2 * pp.radius + 0.01, depth = 2 * pp.radius + 0.01;  // block: wider than the particle
+  const double half = 2 * pp.radius + 0.01,
+               depth = 2 * pp.radius + 0.01;  // block: wider than the particle
   OJson particle = {{"name", "particle"}, {"material", "particle"}};
   long every = 1;
   if (c.model == ModelKind::sphere) {
     particle["shape"] = {{"type", "sphere"}, {"radius", pp.radius}};
   } else {
-    const fs::path rel = fs::path("..") / ".." / ".." / "meshes" / c.particle / std::to_string(c.resolution) / "surface.off";
+    const fs::path rel = fs::path("..") / ".." / ".." / "meshes" / c.particle /
+                         std::to_string(c.resolution) / "surface.off";
     particle["shape"] = {{"type", "mesh"}, {"file", rel.generic_string()}};
     particle["model"] = model_name(c.model);
     const double dt = (c.model == ModelKind::fem ? pp.dt_fem : pp.dt_rigid).at(c.resolution);
@@ -248,12 +269,14 @@ OJson case_scene(const StudyDef& def, const ParticlePlan& pp, const CaseKey& c) 
       {"gravity", {0.0, 0.0, -def.gravity}},
       {"duration", pp.duration},
       {"dt", "auto"},
-      {"materials", {{"particle", material_json(def.material)}, {"block", material_json(def.block_material)}}},
+      {"materials",
+       {{"particle", material_json(def.material)}, {"block", material_json(def.block_material)}}},
       {"bodies",
        {particle,
         {{"name", "block"},
          {"material", "block"},
-         {"shape", {{"type", "box"}, {"min", {-half, -half, -depth}}, {"max", {half, half, 0.0}}}}}}},
+         {"shape",
+          {{"type", "box"}, {"min", {-half, -half, -depth}}, {"max", {half, half, 0.0}}}}}}},
       {"contact", {{"law", c.model == ModelKind::sphere ? "hertz" : "potential"}}},
       {"record", {{"force_on", "particle"}, {"every", every}}}};
   return scene;
@@ -285,12 +308,17 @@ double estimated_dt(const TetMesh& tets, const StudyDef& def, fdem::BodyKind kin
   fdem::WorldDef w;
   TetMesh m = tets;
   m.nodes.row(2).array() += def.gap - m.nodes.row(2).minCoeff();
-  w.bodies.push_back({.name = "particle", .kind = kind, .mesh = m, .material = def.material,
+  w.bodies.push_back({.name = "particle",
+                      .kind = kind,
+                      .mesh = m,
+                      .material = def.material,
                       .velocity = Vec3(0, 0, -def.speed)});
   const double half = 2 * radius + 0.01;
-  w.bodies.push_back({.name = "block", .kind = fdem::BodyKind::fixed,
-                      .mesh = fdem::box_mesh(Vec3(-half, -half, -half), Vec3(half, half, 0), 1, 1, 1),
-                      .material = def.block_material});
+  w.bodies.push_back(
+      {.name = "block",
+       .kind = fdem::BodyKind::fixed,
+       .mesh = fdem::box_mesh(Vec3(-half, -half, -half), Vec3(half, half, 0), 1, 1, 1),
+       .material = def.block_material});
   w.record_body = 0;
   const fdem::World world = fdem::make_world(w);
   return 0.5 * fdem::critical_step(world).critical;
@@ -300,7 +328,8 @@ double estimated_dt(const TetMesh& tets, const StudyDef& def, fdem::BodyKind kin
 
 std::string CaseKey::dir_name() const {
   if (model == ModelKind::sphere) return std::string("sphere-") + placement_name(placement);
-  return std::string(model_name(model)) + "-" + std::to_string(resolution) + "-" + placement_name(placement);
+  return std::string(model_name(model)) + "-" + std::to_string(resolution) + "-" +
+         placement_name(placement);
 }
 
 double hertz_contact_time(double radius, double mass, double effective_young, double speed) {
@@ -326,8 +355,9 @@ std::vector<CaseKey> plan_cases(const StudyDef& def) {
 StudyOutcome run_study(const StudyDef& def, const fs::path& out, const StudyRunOptions& options) {
   const auto wall0 = std::chrono::steady_clock::now();
   const int jobs = options.jobs > 0 ? options.jobs
-                   : def.jobs > 0   ? def.jobs
-                                    : std::max(1, static_cast<int>(std::thread::hardware_concurrency()));
+                   : def.jobs > 0
+                       ? def.jobs
+                       : std::max(1, static_cast<int>(std::thread::hardware_concurrency()));
   StudyOutcome outcome;
   std::mutex mutex;
   fs::create_directories(out);
@@ -360,7 +390,8 @@ StudyOutcome run_study(const StudyDef& def, const fs::path& out, const StudyRunO
   };
   std::vector<MeshTask> mesh_tasks;
   // The sphere alone needs only the reference mesh (its volume).
-  const bool polyhedra = std::any_of(def.models.begin(), def.models.end(), [](ModelKind m) { return m != ModelKind::sphere; });
+  const bool polyhedra = std::any_of(def.models.begin(), def.models.end(),
+                                     [](ModelKind m) { return m != ModelKind::sphere; });
   for (std::size_t i = 0; i < np; ++i) {
     for (long n : def.resolutions) {
       if (polyhedra || n == def.reference) mesh_tasks.push_back({i, n});
@@ -368,7 +399,8 @@ StudyOutcome run_study(const StudyDef& def, const fs::path& out, const StudyRunO
   }
   std::vector<std::string> mesh_errors(mesh_tasks.size());
   {
-    Progress progress(options.quiet, "meshes", static_cast<int>(mesh_tasks.size()), static_cast<double>(mesh_tasks.size()));
+    Progress progress(options.quiet, "meshes", static_cast<int>(mesh_tasks.size()),
+                      static_cast<double>(mesh_tasks.size()));
     parallel_for(static_cast<int>(mesh_tasks.size()), jobs, [&](int k) {
       const MeshTask& t = mesh_tasks[k];
       const ParticleSource& p = def.particles[t.particle];
@@ -386,15 +418,19 @@ StudyOutcome run_study(const StudyDef& def, const fs::path& out, const StudyRunO
         geometry::PipelineOptions o;
         o.faces = t.faces;
         o.tetrahedralize = true;
-        const geometry::PreparedParticle prepared = geometry::prepare_particle(sources[t.particle], p.name, o);
+        const geometry::PreparedParticle prepared =
+            geometry::prepare_particle(sources[t.particle], p.name, o);
         fs::create_directories(dir);
         fs::remove(report);
         geometry::write_surface_mesh(dir / "surface.off", prepared.surface);
         nlohmann::json j = geometry::mesh_report(prepared);
         j["study_source"] = tags[t.particle];
-        j["centroid_height"] = prepared.props.centroid.z() - prepared.surface.vertices.row(2).minCoeff();
-        j["dt_estimate_fem"] = estimated_dt(prepared.tets, def, fdem::BodyKind::deformable, prepared.props.equivalent_radius);
-        j["dt_estimate_rigid"] = estimated_dt(prepared.tets, def, fdem::BodyKind::rigid, prepared.props.equivalent_radius);
+        j["centroid_height"] =
+            prepared.props.centroid.z() - prepared.surface.vertices.row(2).minCoeff();
+        j["dt_estimate_fem"] = estimated_dt(prepared.tets, def, fdem::BodyKind::deformable,
+                                            prepared.props.equivalent_radius);
+        j["dt_estimate_rigid"] = estimated_dt(prepared.tets, def, fdem::BodyKind::rigid,
+                                              prepared.props.equivalent_radius);
         j["mesh_cpu_seconds"] = thread_cpu_seconds() - cpu0;
         io::write_atomically(report, j.dump(1) + "\n");
         progress.done(1, p.name + " " + std::to_string(t.faces) + " triangles", false);
@@ -416,7 +452,9 @@ StudyOutcome run_study(const StudyDef& def, const fs::path& out, const StudyRunO
       pp.mesh_error = std::to_string(mesh_tasks[k].faces) + " triangles: " + mesh_errors[k];
       continue;
     }
-    const io::Json j = io::read_json_file(mesh_dir(out, def.particles[mesh_tasks[k].particle].name, mesh_tasks[k].faces) / "mesh.json");
+    const io::Json j = io::read_json_file(
+        mesh_dir(out, def.particles[mesh_tasks[k].particle].name, mesh_tasks[k].faces) /
+        "mesh.json");
     pp.centroid_height[mesh_tasks[k].faces] = j.at("centroid_height").get<double>();
     pp.dt_fem[mesh_tasks[k].faces] = j.at("dt_estimate_fem").get<double>();
     pp.dt_rigid[mesh_tasks[k].faces] = j.at("dt_estimate_rigid").get<double>();
@@ -445,7 +483,8 @@ StudyOutcome run_study(const StudyDef& def, const fs::path& out, const StudyRunO
   // 4. Cases, longest first.
   std::vector<int> order(cases.size());
   for (std::size_t k = 0; k < cases.size(); ++k) order[k] = static_cast<int>(k);
-  std::stable_sort(order.begin(), order.end(), [&](int a, int b) { return case_weight(cases[a]) > case_weight(cases[b]); });
+  std::stable_sort(order.begin(), order.end(),
+                   [&](int a, int b) { return case_weight(cases[a]) > case_weight(cases[b]); });
   double total_weight = 0;
   for (const CaseKey& c : cases) total_weight += case_weight(c);
   outcome.cases = static_cast<int>(cases.size());
@@ -466,7 +505,9 @@ StudyOutcome run_study(const StudyDef& def, const fs::path& out, const StudyRunO
       } else {
         // Outputs of an earlier, different case go first: only this run's may sit beside the
         // new scene.json.
-        for (const char* f : {"case.json", "failed.json", "summary.json", "force.csv", "energy.csv"}) fs::remove(dir / f);
+        for (const char* f :
+             {"case.json", "failed.json", "summary.json", "force.csv", "energy.csv"})
+          fs::remove(dir / f);
         io::write_atomically(dir / "scene.json", scene_text);
         const scene::SceneDef scene = scene::load_scene(dir / "scene.json");
         const double run_cpu0 = thread_cpu_seconds();
@@ -476,21 +517,25 @@ StudyOutcome run_study(const StudyDef& def, const fs::path& out, const StudyRunO
         // The run's own cpu_seconds is the process's clock (every worker); this is the case's.
         result.summary["cpu_seconds_thread"] = cpu;
         run::write_outputs(result, dir);
-        OJson record = {{"particle", c.particle},
-                        {"model", model_name(c.model)},
-                        {"resolution", c.model == ModelKind::sphere ? OJson() : OJson(c.resolution)},
-                        {"placement", placement_name(c.placement)},
-                        {"status", result.status},
-                        {"start_gap", start_height(def, pp, c).second},
-                        {"duration", pp.duration},
-                        {"hertz_contact_time", pp.contact_time},
-                        {"cpu_seconds", cpu}};
+        OJson record = {
+            {"particle", c.particle},
+            {"model", model_name(c.model)},
+            {"resolution", c.model == ModelKind::sphere ? OJson() : OJson(c.resolution)},
+            {"placement", placement_name(c.placement)},
+            {"status", result.status},
+            {"start_gap", start_height(def, pp, c).second},
+            {"duration", pp.duration},
+            {"hertz_contact_time", pp.contact_time},
+            {"cpu_seconds", cpu}};
         io::write_atomically(dir / "case.json", record.dump(1) + "\n");
       }
     } catch (const std::exception& e) {
       failed = true;
       try {
-        io::write_atomically(dir / "failed.json", OJson{{"particle", c.particle}, {"case", c.dir_name()}, {"message", e.what()}}.dump(1) + "\n");
+        io::write_atomically(
+            dir / "failed.json",
+            OJson{{"particle", c.particle}, {"case", c.dir_name()}, {"message", e.what()}}.dump(1) +
+                "\n");
       } catch (const std::exception&) {
         // The folder itself cannot be written: the count below still reports the failure.
       }
@@ -505,9 +550,14 @@ StudyOutcome run_study(const StudyDef& def, const fs::path& out, const StudyRunO
     }
     char buf[64];
     std::snprintf(buf, sizeof buf, " %.2f s", cpu);
-    progress.done(case_weight(c), label + (failed ? " FAILED" : skipped ? " (done before)" : buf), failed, skipped);
+    progress.done(case_weight(c),
+                  label + (failed    ? " FAILED"
+                           : skipped ? " (done before)"
+                                     : buf),
+                  failed, skipped);
   });
-  outcome.wall_seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - wall0).count();
+  outcome.wall_seconds =
+      std::chrono::duration<double>(std::chrono::steady_clock::now() - wall0).count();
   return outcome;
 }
 

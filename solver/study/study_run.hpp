@@ -47,7 +47,8 @@ std::vector<CaseKey> plan_cases(const StudyDef& def);
 // Runs every case not already done. Throws InputError for a particle that cannot be read or
 // meshed at every resolution (nothing is run then); a case that fails is recorded and the rest
 // go on.
-StudyOutcome run_study(const StudyDef& def, const std::filesystem::path& out, const StudyRunOptions& options);
+StudyOutcome run_study(const StudyDef& def, const std::filesystem::path& out,
+                       const StudyRunOptions& options);
 
 // Hertz contact time of a sphere (radius R, mass m) striking a rigid-backed elastic half-space at
 // speed v: t_c = 2.868 (m² / (R E*² v))^{1/5} (Johnson 1985, §11.4), s. Used to size "auto"

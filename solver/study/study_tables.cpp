@@ -38,7 +38,8 @@ CurveShape curve_shape(const std::vector<double>& t, const std::vector<double>& 
 
 namespace {
 
-std::vector<double> resample(const std::vector<double>& t, const std::vector<double>& f, double t_end, int n) {
+std::vector<double> resample(const std::vector<double>& t, const std::vector<double>& f,
+                             double t_end, int n) {
   std::vector<double> out(n, 0.0);
   std::size_t j = 0;
   for (int i = 0; i < n; ++i) {
@@ -59,8 +60,10 @@ std::vector<double> resample(const std::vector<double>& t, const std::vector<dou
 }  // namespace
 
 double cross_correlation_lag(const std::vector<double>& t_ref, const std::vector<double>& ref,
-                             const std::vector<double>& t, const std::vector<double>& f, double t_end, int points) {
-  const std::vector<double> a = resample(t_ref, ref, t_end, points), b = resample(t, f, t_end, points);
+                             const std::vector<double>& t, const std::vector<double>& f,
+                             double t_end, int points) {
+  const std::vector<double> a = resample(t_ref, ref, t_end, points),
+                            b = resample(t, f, t_end, points);
   const int max_lag = points / 2;
   std::vector<double> c(2 * max_lag + 1, 0.0);
   for (int k = -max_lag; k <= max_lag; ++k) {
@@ -78,7 +81,8 @@ double cross_correlation_lag(const std::vector<double>& t_ref, const std::vector
   return shift * t_end / (points - 1);
 }
 
-std::string classify(double lag_rel, double duration_ratio, double skew_diff, const ClassifyCriteria& c) {
+std::string classify(double lag_rel, double duration_ratio, double skew_diff,
+                     const ClassifyCriteria& c) {
   std::string out;
   auto add = [&](const char* s) { out += (out.empty() ? "" : "+") + std::string(s); };
   if (std::abs(lag_rel) > c.shift) add("shifted");
@@ -109,7 +113,8 @@ std::string cell(const OJson& v) {
   return v.dump();
 }
 
-std::string csv(const std::vector<std::string>& header, const std::vector<std::vector<OJson>>& rows) {
+std::string csv(const std::vector<std::string>& header,
+                const std::vector<std::vector<OJson>>& rows) {
   std::ostringstream s;
   for (std::size_t i = 0; i < header.size(); ++i) s << (i ? "," : "") << header[i];
   s << "\n";
@@ -160,7 +165,9 @@ double rel_err(const OJson& v, const OJson& ref) {
   return (v.get<double>() - ref.get<double>()) / ref.get<double>();
 }
 
-OJson finite_or_null(double x) { return std::isfinite(x) ? OJson(x) : OJson(); }
+OJson finite_or_null(double x) {
+  return std::isfinite(x) ? OJson(x) : OJson();
+}
 
 }  // namespace
 
@@ -205,11 +212,31 @@ StudyTables write_tables(const StudyDef& def, const fs::path& dir, const StudyOu
 
   // cases.csv: one row per case, errors against the same model's reference resolution and
   // against the fem reference (same placement).
-  const std::vector<std::string> case_header = {
-      "particle", "model", "resolution", "placement", "status", "peak_force", "impulse", "contact_duration",
-      "first_contact_time", "cpu_seconds", "steps", "dt", "start_gap", "volume_change_rel", "centroid_shift_rel",
-      "max_asperity_rel", "max_asperity_change_rel", "peak_force_err", "impulse_err", "contact_duration_err",
-      "first_contact_shift", "peak_force_err_fem", "impulse_err_fem", "open_at_end", "message"};
+  const std::vector<std::string> case_header = {"particle",
+                                                "model",
+                                                "resolution",
+                                                "placement",
+                                                "status",
+                                                "peak_force",
+                                                "impulse",
+                                                "contact_duration",
+                                                "first_contact_time",
+                                                "cpu_seconds",
+                                                "steps",
+                                                "dt",
+                                                "start_gap",
+                                                "volume_change_rel",
+                                                "centroid_shift_rel",
+                                                "max_asperity_rel",
+                                                "max_asperity_change_rel",
+                                                "peak_force_err",
+                                                "impulse_err",
+                                                "contact_duration_err",
+                                                "first_contact_shift",
+                                                "peak_force_err_fem",
+                                                "impulse_err_fem",
+                                                "open_at_end",
+                                                "message"};
   std::vector<std::vector<OJson>> case_rows;
   struct ErrRow {
     double peak = std::nan(""), impulse = std::nan("");
@@ -218,7 +245,9 @@ StudyTables write_tables(const StudyDef& def, const fs::path& dir, const StudyOu
   for (std::size_t i = 0; i < cases.size(); ++i) {
     const CaseData& c = cases[i];
     const CaseKey& k = c.key;
-    const CaseData* same = k.model == ModelKind::sphere ? nullptr : find(k.particle, k.model, def.reference, k.placement);
+    const CaseData* same = k.model == ModelKind::sphere
+                               ? nullptr
+                               : find(k.particle, k.model, def.reference, k.placement);
     const CaseData* fem = find(k.particle, ModelKind::fem, def.reference, k.placement);
     const bool ok = usable(&c);
     double pe = std::nan(""), ie = std::nan(""), de = std::nan(""), fs_ = std::nan("");
@@ -226,7 +255,8 @@ StudyTables write_tables(const StudyDef& def, const fs::path& dir, const StudyOu
       pe = rel_err(c.summary["peak_force"], same->summary["peak_force"]);
       ie = rel_err(c.summary["impulse"], same->summary["impulse"]);
       de = rel_err(c.summary["contact_duration"], same->summary["contact_duration"]);
-      fs_ = c.summary["first_contact_time"].get<double>() - same->summary["first_contact_time"].get<double>();
+      fs_ = c.summary["first_contact_time"].get<double>() -
+            same->summary["first_contact_time"].get<double>();
     }
     if (ok && usable(fem)) {
       err_fem[i].peak = rel_err(c.summary["peak_force"], fem->summary["peak_force"]);
@@ -240,17 +270,31 @@ StudyTables write_tables(const StudyDef& def, const fs::path& dir, const StudyOu
       const Curve curve = read_force(c.dir / "force.csv");
       open_at_end = !curve.f.empty() && curve.f.back() > 0;
     }
-    case_rows.push_back({k.particle, model_name(k.model), k.model == ModelKind::sphere ? OJson() : OJson(k.resolution),
-                         placement_name(k.placement), c.status, num_or_null(c.summary, "peak_force"),
-                         num_or_null(c.summary, "impulse"), num_or_null(c.summary, "contact_duration"),
-                         num_or_null(c.summary, "first_contact_time"), num_or_null(c.summary, "cpu_seconds_thread"),
-                         num_or_null(c.summary, "steps"), num_or_null(c.summary, "dt"), finite_or_null(c.start_gap),
+    case_rows.push_back({k.particle,
+                         model_name(k.model),
+                         k.model == ModelKind::sphere ? OJson() : OJson(k.resolution),
+                         placement_name(k.placement),
+                         c.status,
+                         num_or_null(c.summary, "peak_force"),
+                         num_or_null(c.summary, "impulse"),
+                         num_or_null(c.summary, "contact_duration"),
+                         num_or_null(c.summary, "first_contact_time"),
+                         num_or_null(c.summary, "cpu_seconds_thread"),
+                         num_or_null(c.summary, "steps"),
+                         num_or_null(c.summary, "dt"),
+                         finite_or_null(c.start_gap),
                          has_mesh ? num_or_null(c.mesh, "volume_change_rel") : OJson(),
                          has_mesh ? num_or_null(c.mesh, "centroid_shift_rel") : OJson(),
                          has_mesh ? num_or_null(c.mesh, "max_asperity_rel") : OJson(),
-                         has_mesh ? num_or_null(c.mesh, "max_asperity_change_rel") : OJson(), finite_or_null(pe),
-                         finite_or_null(ie), finite_or_null(de), finite_or_null(fs_), finite_or_null(err_fem[i].peak),
-                         finite_or_null(err_fem[i].impulse), open_at_end, c.message.empty() ? OJson() : OJson(c.message)});
+                         has_mesh ? num_or_null(c.mesh, "max_asperity_change_rel") : OJson(),
+                         finite_or_null(pe),
+                         finite_or_null(ie),
+                         finite_or_null(de),
+                         finite_or_null(fs_),
+                         finite_or_null(err_fem[i].peak),
+                         finite_or_null(err_fem[i].impulse),
+                         open_at_end,
+                         c.message.empty() ? OJson() : OJson(c.message)});
   }
   io::write_atomically(dir / "cases.csv", csv(case_header, case_rows));
 
@@ -272,33 +316,42 @@ StudyTables write_tables(const StudyDef& def, const fs::path& dir, const StudyOu
           const CaseData* c = find(p.name, m, n, pl);
           if (!usable(c)) continue;
           const Curve cc = read_force(c->dir / "force.csv");
-          const double t_end = std::max(rc.t.empty() ? 0.0 : rc.t.back(), cc.t.empty() ? 0.0 : cc.t.back());
+          const double t_end =
+              std::max(rc.t.empty() ? 0.0 : rc.t.back(), cc.t.empty() ? 0.0 : cc.t.back());
           const double lag = cross_correlation_lag(rc.t, rc.f, cc.t, cc.f, t_end);
-          const double ratio = d_ref > 0 ? c->summary["contact_duration"].get<double>() / d_ref : std::nan("");
+          const double ratio =
+              d_ref > 0 ? c->summary["contact_duration"].get<double>() / d_ref : std::nan("");
           const CurveShape cs = curve_shape(cc.t, cc.f);
-          const std::string cls = classify(d_ref > 0 ? lag / d_ref : 0, ratio, cs.skewness - rs.skewness, criteria);
-          class_rows.push_back({p.name, model_name(m), placement_name(pl), n, lag, finite_or_null(d_ref > 0 ? lag / d_ref : std::nan("")),
-                                finite_or_null(ratio), cs.skewness, rs.skewness, cs.skewness - rs.skewness, cls});
+          const std::string cls =
+              classify(d_ref > 0 ? lag / d_ref : 0, ratio, cs.skewness - rs.skewness, criteria);
+          class_rows.push_back({p.name, model_name(m), placement_name(pl), n, lag,
+                                finite_or_null(d_ref > 0 ? lag / d_ref : std::nan("")),
+                                finite_or_null(ratio), cs.skewness, rs.skewness,
+                                cs.skewness - rs.skewness, cls});
           if (coarsest.empty()) coarsest = cls;
           if (cls != "overlapping") {
             std::istringstream parts(cls);
             for (std::string part; std::getline(parts, part, '+');) {
-              if (("+" + all + "+").find("+" + part + "+") == std::string::npos) all += (all.empty() ? "" : "+") + part;
+              if (("+" + all + "+").find("+" + part + "+") == std::string::npos)
+                all += (all.empty() ? "" : "+") + part;
             }
           }
         }
         if (!coarsest.empty()) {
-          particle_rows.push_back({p.name, model_name(m), placement_name(pl), all.empty() ? "overlapping" : all, coarsest});
+          particle_rows.push_back({p.name, model_name(m), placement_name(pl),
+                                   all.empty() ? "overlapping" : all, coarsest});
         }
       }
     }
   }
-  io::write_atomically(dir / "classification.csv",
-                       csv({"particle", "model", "placement", "resolution", "lag", "lag_rel", "duration_ratio", "skewness",
-                            "skewness_reference", "skewness_diff", "class"},
-                           class_rows));
-  io::write_atomically(dir / "particle_classes.csv",
-                       csv({"particle", "model", "placement", "classes", "coarsest_class"}, particle_rows));
+  io::write_atomically(
+      dir / "classification.csv",
+      csv({"particle", "model", "placement", "resolution", "lag", "lag_rel", "duration_ratio",
+           "skewness", "skewness_reference", "skewness_diff", "class"},
+          class_rows));
+  io::write_atomically(
+      dir / "particle_classes.csv",
+      csv({"particle", "model", "placement", "classes", "coarsest_class"}, particle_rows));
 
   // cpu_fit.csv: median CPU per resolution across particles, and t = C N^p by least squares on
   // log–log axes.
@@ -323,13 +376,18 @@ StudyTables write_tables(const StudyDef& def, const fs::path& dir, const StudyOu
       const double np_ = static_cast<double>(lx.size());
       for (std::size_t i = 0; i < lx.size(); ++i) mx += lx[i] / np_, my += ly[i] / np_;
       double sxy = 0, sxx = 0;
-      for (std::size_t i = 0; i < lx.size(); ++i) sxy += (lx[i] - mx) * (ly[i] - my), sxx += (lx[i] - mx) * (lx[i] - mx);
+      for (std::size_t i = 0; i < lx.size(); ++i)
+        sxy += (lx[i] - mx) * (ly[i] - my), sxx += (lx[i] - mx) * (lx[i] - mx);
       const double p = sxy / sxx, c0 = std::exp(my - p * mx);
       fit_rows.push_back({model_name(m), placement_name(pl), p, c0, static_cast<long>(lx.size())});
-      fits.push_back({{"model", model_name(m)}, {"placement", placement_name(pl)}, {"exponent", p}, {"coefficient", c0}});
+      fits.push_back({{"model", model_name(m)},
+                      {"placement", placement_name(pl)},
+                      {"exponent", p},
+                      {"coefficient", c0}});
     }
   }
-  io::write_atomically(dir / "cpu_fit.csv", csv({"model", "placement", "exponent", "coefficient", "points"}, fit_rows));
+  io::write_atomically(dir / "cpu_fit.csv",
+                       csv({"model", "placement", "exponent", "coefficient", "points"}, fit_rows));
 
   // Guidelines: for each tolerance, metric and statistic (median, 90th percentile over the
   // particles), the cheapest (median CPU) model and resolution whose |error| against the fem
@@ -350,7 +408,8 @@ StudyTables write_tables(const StudyDef& def, const fs::path& dir, const StudyOu
   const std::vector<std::string> metrics = {"peak_force", "impulse", "peak_force+impulse"};
   std::vector<std::vector<OJson>> guide_rows, cand_rows;
   OJson guide = OJson::array();
-  const bool has_fem_ref = std::find(def.models.begin(), def.models.end(), ModelKind::fem) != def.models.end();
+  const bool has_fem_ref =
+      std::find(def.models.begin(), def.models.end(), ModelKind::fem) != def.models.end();
   for (Placement pl : def.placements) {
     if (!has_fem_ref) break;
     struct Stats {
@@ -380,9 +439,10 @@ StudyTables write_tables(const StudyDef& def, const fs::path& dir, const StudyOu
       s.err["peak_force+impulse"] = {quantile(eb, 0.5), quantile(eb, 0.9)};
       s.cpu = quantile(cpu, 0.5);
       stats.push_back(s);
-      cand_rows.push_back({placement_name(pl), model_name(cand.model), cand.model == ModelKind::sphere ? OJson() : OJson(cand.resolution),
-                           s.particles, s.err["peak_force"].first, s.err["peak_force"].second, s.err["impulse"].first,
-                           s.err["impulse"].second, s.cpu});
+      cand_rows.push_back({placement_name(pl), model_name(cand.model),
+                           cand.model == ModelKind::sphere ? OJson() : OJson(cand.resolution),
+                           s.particles, s.err["peak_force"].first, s.err["peak_force"].second,
+                           s.err["impulse"].first, s.err["impulse"].second, s.cpu});
     }
     for (double tol : tolerances) {
       for (const std::string& metric : metrics) {
@@ -394,10 +454,12 @@ StudyTables write_tables(const StudyDef& def, const fs::path& dir, const StudyOu
           }
           if (!best) continue;
           const double e = q == 0 ? best->err.at(metric).first : best->err.at(metric).second;
-          const bool is_ref = best->c.model == ModelKind::fem && best->c.resolution == def.reference;
-          const OJson res = best->c.model == ModelKind::sphere ? OJson() : OJson(best->c.resolution);
-          guide_rows.push_back({placement_name(pl), metric, tol, q == 0 ? "median" : "p90", model_name(best->c.model), res, e,
-                                best->cpu, is_ref});
+          const bool is_ref =
+              best->c.model == ModelKind::fem && best->c.resolution == def.reference;
+          const OJson res =
+              best->c.model == ModelKind::sphere ? OJson() : OJson(best->c.resolution);
+          guide_rows.push_back({placement_name(pl), metric, tol, q == 0 ? "median" : "p90",
+                                model_name(best->c.model), res, e, best->cpu, is_ref});
           guide.push_back({{"placement", placement_name(pl)},
                            {"metric", metric},
                            {"tolerance", tol},
@@ -411,19 +473,23 @@ StudyTables write_tables(const StudyDef& def, const fs::path& dir, const StudyOu
       }
     }
   }
-  io::write_atomically(dir / "guidelines.csv", csv({"placement", "metric", "tolerance", "statistic", "model", "resolution",
-                                                    "error", "cpu_seconds_median", "is_reference"},
-                                                   guide_rows));
-  io::write_atomically(dir / "candidates.csv",
-                       csv({"placement", "model", "resolution", "particles", "peak_force_err_median", "peak_force_err_p90",
-                            "impulse_err_median", "impulse_err_p90", "cpu_seconds_median"},
-                           cand_rows));
+  io::write_atomically(dir / "guidelines.csv",
+                       csv({"placement", "metric", "tolerance", "statistic", "model", "resolution",
+                            "error", "cpu_seconds_median", "is_reference"},
+                           guide_rows));
+  io::write_atomically(
+      dir / "candidates.csv",
+      csv({"placement", "model", "resolution", "particles", "peak_force_err_median",
+           "peak_force_err_p90", "impulse_err_median", "impulse_err_p90", "cpu_seconds_median"},
+          cand_rows));
 
   // The range of particles and impacts the guidelines were measured on (recommend warns outside).
   double d_min = 1e300, d_max = 0;
   for (const ParticleSource& p : def.particles) {
-    const CaseData* c = find(p.name, has_fem_ref ? ModelKind::fem : def.models.front(),
-                             def.models.front() == ModelKind::sphere && !has_fem_ref ? 0 : def.reference, def.placements.front());
+    const CaseData* c =
+        find(p.name, has_fem_ref ? ModelKind::fem : def.models.front(),
+             def.models.front() == ModelKind::sphere && !has_fem_ref ? 0 : def.reference,
+             def.placements.front());
     if (c && c->mesh.is_object() && c->mesh.contains("equivalent_radius")) {
       const double d = 2 * c->mesh["equivalent_radius"].get<double>();
       d_min = std::min(d_min, d);
@@ -436,7 +502,10 @@ StudyTables write_tables(const StudyDef& def, const fs::path& dir, const StudyOu
                     {"particle_diameter_range", d_max > 0 ? OJson{d_min, d_max} : OJson()},
                     {"particles", def.particles.size()},
                     {"resolutions", def.resolutions},
-                    {"material", {{"density", def.material.density}, {"young", def.material.young}, {"poisson", def.material.poisson}}},
+                    {"material",
+                     {{"density", def.material.density},
+                      {"young", def.material.young},
+                      {"poisson", def.material.poisson}}},
                     {"rows", guide}};
   io::write_atomically(dir / "guidelines.json", out.guidelines.dump(1) + "\n");
 
@@ -449,8 +518,8 @@ StudyTables write_tables(const StudyDef& def, const fs::path& dir, const StudyOu
       cpu_total += c.cpu;
       cpu_by_model[model_name(c.key.model)] += c.cpu;
     }
-    if (c.mesh.is_object() && c.key.model != ModelKind::sphere && c.key.placement == def.placements.front() &&
-        c.key.model == def.models.front()) {
+    if (c.mesh.is_object() && c.key.model != ModelKind::sphere &&
+        c.key.placement == def.placements.front() && c.key.model == def.models.front()) {
       cpu_total += c.mesh.value("mesh_cpu_seconds", 0.0);
       cpu_by_model["meshing"] += c.mesh.value("mesh_cpu_seconds", 0.0);
     }
@@ -465,31 +534,44 @@ StudyTables write_tables(const StudyDef& def, const fs::path& dir, const StudyOu
     }
     return quantile(v, 0.5);
   };
-  const bool has_100_1000 = has_fem_ref && std::count(def.resolutions.begin(), def.resolutions.end(), 100) &&
+  const bool has_100_1000 = has_fem_ref &&
+                            std::count(def.resolutions.begin(), def.resolutions.end(), 100) &&
                             std::count(def.resolutions.begin(), def.resolutions.end(), 1000);
   const long lo = def.resolutions.front(), hi = def.resolutions.back();
-  out.summary = {{"study", def.name},
-                 {"particles", def.particles.size()},
-                 {"resolutions", def.resolutions},
-                 {"models", OJson::array()},
-                 {"placements", OJson::array()},
-                 {"cases", out.cases},
-                 {"done", out.done},
-                 {"failed", out.failed},
-                 {"cpu_seconds_total", cpu_total},
-                 {"cpu_seconds_by_model", cpu_by_model},
-                 {"last_run", {{"wall_seconds", run.wall_seconds}, {"cpu_seconds", run.cpu_seconds}, {"ran", run.ran},
-                               {"kept", run.skipped}, {"failed", run.failed}}},
-                 {"fem_cpu_growth", has_fem_ref ? OJson{{"from", lo}, {"to", hi}, {"ratio", median_cpu(ModelKind::fem, hi) / median_cpu(ModelKind::fem, lo)}} : OJson()},
-                 {"fem_cpu_growth_100_1000", has_100_1000 ? OJson(median_cpu(ModelKind::fem, 1000) / median_cpu(ModelKind::fem, 100)) : OJson()},
-                 {"cpu_fit", fits},
-                 {"published", {{"source", "Zhang & Zsaki 2019, FEM/DEM, 50 scanned particles x 4 resolutions"},
-                                {"simulations", 200},
-                                {"cpu_seconds_100", 4},
-                                {"cpu_seconds_1000", 572},
-                                {"cpu_growth_100_1000", 572.0 / 4.0},
-                                {"peak_force_variation_max", 0.05},
-                                {"impulse_variation_max", 0.06}}}};
+  out.summary = {
+      {"study", def.name},
+      {"particles", def.particles.size()},
+      {"resolutions", def.resolutions},
+      {"models", OJson::array()},
+      {"placements", OJson::array()},
+      {"cases", out.cases},
+      {"done", out.done},
+      {"failed", out.failed},
+      {"cpu_seconds_total", cpu_total},
+      {"cpu_seconds_by_model", cpu_by_model},
+      {"last_run",
+       {{"wall_seconds", run.wall_seconds},
+        {"cpu_seconds", run.cpu_seconds},
+        {"ran", run.ran},
+        {"kept", run.skipped},
+        {"failed", run.failed}}},
+      {"fem_cpu_growth", has_fem_ref ? OJson{{"from", lo},
+                                             {"to", hi},
+                                             {"ratio", median_cpu(ModelKind::fem, hi) /
+                                                           median_cpu(ModelKind::fem, lo)}}
+                                     : OJson()},
+      {"fem_cpu_growth_100_1000",
+       has_100_1000 ? OJson(median_cpu(ModelKind::fem, 1000) / median_cpu(ModelKind::fem, 100))
+                    : OJson()},
+      {"cpu_fit", fits},
+      {"published",
+       {{"source", "Zhang & Zsaki 2019, FEM/DEM, 50 scanned particles x 4 resolutions"},
+        {"simulations", 200},
+        {"cpu_seconds_100", 4},
+        {"cpu_seconds_1000", 572},
+        {"cpu_growth_100_1000", 572.0 / 4.0},
+        {"peak_force_variation_max", 0.05},
+        {"impulse_variation_max", 0.06}}}};
   for (ModelKind m : def.models) out.summary["models"].push_back(model_name(m));
   for (Placement p : def.placements) out.summary["placements"].push_back(placement_name(p));
   io::write_atomically(dir / "study_summary.json", out.summary.dump(1) + "\n");

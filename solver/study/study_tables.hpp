@@ -26,8 +26,8 @@ CurveShape curve_shape(const std::vector<double>& t, const std::vector<double>& 
 // uniform grid of `points` samples over [0, t_end], refined by a parabola through the peak);
 // positive when `f` comes later.
 double cross_correlation_lag(const std::vector<double>& t_ref, const std::vector<double>& ref,
-                             const std::vector<double>& t, const std::vector<double>& f, double t_end,
-                             int points = 2048);
+                             const std::vector<double>& t, const std::vector<double>& f,
+                             double t_end, int points = 2048);
 
 // The classification criteria (docs/study.md, "Classification"), each with its reason there.
 struct ClassifyCriteria {
@@ -36,7 +36,8 @@ struct ClassifyCriteria {
   double asymmetry = 0.30;  // |skewness − skewness of the reference| above this: "asymmetric"
 };
 // "overlapping" or the criteria met, joined by '+' (e.g. "shifted+tail").
-std::string classify(double lag_rel, double duration_ratio, double skew_diff, const ClassifyCriteria& c = {});
+std::string classify(double lag_rel, double duration_ratio, double skew_diff,
+                     const ClassifyCriteria& c = {});
 
 // p-th quantile (0..1) with linear interpolation between order statistics (Hyndman & Fan type 7).
 double quantile(std::vector<double> v, double p);
@@ -50,6 +51,7 @@ struct StudyTables {
 // Reads DIR/cases/** and writes DIR/cases.csv, classification.csv, particle_classes.csv,
 // cpu_fit.csv, guidelines.csv, guidelines.json and study_summary.json (each atomically).
 // `run` adds this run's wall and CPU time to the summary.
-StudyTables write_tables(const StudyDef& def, const std::filesystem::path& dir, const StudyOutcome& run);
+StudyTables write_tables(const StudyDef& def, const std::filesystem::path& dir,
+                         const StudyOutcome& run);
 
 }  // namespace asperity::study
