@@ -1,0 +1,78 @@
+// Known answers for the study's curve measures: skewness, cross-correlation lag, classes,
+// quantiles and the Hertz contact time.
+#include <cmath>
+#include <numbers>
+#include <vector>
+
+#include <gtest/gtest.h>
+
+#include "study/study_run.hpp"
+#include "study/study_tables.hpp"
+
+namespace asperity::study {
+namespace {
+
+// A half-sine pulse of length d starting at t0, sampled every h over [0, t_end].
+void pulse(double t0, double d, double t_end, double h, std::vector<double>& t,
+           std::vector<double>& f, double lean = 0) {
+  t.clear();
+  f.clear();
+  for (double x = 0; x <= t_end + 1e-15; x += h) {
+    t.push_back(x);
+    const double u = (x - t0) / d;
+    // lean > 0 stretches the fall: u' = u^(1-lean) moves the peak earlier
+    f.push_back(u > 0 && u < 1 ? std::sin(std::numbers::pi * std::pow(u, 1 - lean)) : 0.0);
+  }
+}
+
+TEST(CurveShape, HalfSineIsSymmetric) {
+  std::vector<double> t, f;
+  pulse(1e-4, 2e-4, 5e-4, 1e-7, t, f);
+  const CurveShape s = curve_shape(t, f);
+  EXPECT_NEAR(s.mean_time, 2e-4, 1e-9);  // the centre of the pulse
+  EXPECT_NEAR(s.skewness, 0.0, 1e-6);    // symmetric: third moment 0 up to the quadrature
+  // σ² of t under sin(πu) on [0, d]: d² (1/4 − 2/π²)
+  EXPECT_NEAR(s.spread, 2e-4 * std::sqrt(0.25 - 2 / (std::numbers::pi * std::numbers::pi)), 1e-9);
+}
+
+TEST(CurveShape, EarlyPeakIsPositivelySkewed) {
+  std::vector<double> t, f;
+  pulse(1e-4, 2e-4, 5e-4, 1e-7, t, f, 0.5);
+  EXPECT_GT(curve_shape(t, f).skewness, 0.3);  // a long fall: a tail to the right
+}
+
+TEST(CrossCorrelation, RecoversAShift) {
+  std::vector<double> tr, fr, t, f;
+  pulse(1.0e-4, 2e-4, 6e-4, 1e-7, tr, fr);
+  pulse(1.37e-4, 2e-4, 6e-4, 3e-7, t, f);  // later by 37 µs, sampled differently
+  // grid 6e-4/2047 ≈ 0.29 µs; the parabola refines to well below one sample
+  EXPECT_NEAR(cross_correlation_lag(tr, fr, t, f, 6e-4), 3.7e-5, 1e-7);
+  EXPECT_NEAR(cross_correlation_lag(t, f, tr, fr, 6e-4), -3.7e-5, 1e-7);
+}
+
+TEST(Classify, Criteria) {
+  EXPECT_EQ(classify(0.01, 1.02, 0.1), "overlapping");
+  EXPECT_EQ(classify(0.06, 1.0, 0.0), "shifted");
+  EXPECT_EQ(classify(-0.06, 1.0, 0.0), "shifted");
+  EXPECT_EQ(classify(0.0, 1.2, 0.0), "tail");
+  EXPECT_EQ(classify(0.0, 1.0, -0.4), "asymmetric");
+  EXPECT_EQ(classify(0.1, 1.2, 0.4), "shifted+tail+asymmetric");
+}
+
+TEST(Quantile, Type7) {
+  EXPECT_DOUBLE_EQ(quantile({3, 1, 2}, 0.5), 2.0);
+  EXPECT_DOUBLE_EQ(quantile({1, 2, 3, 4}, 0.5), 2.5);
+  EXPECT_DOUBLE_EQ(quantile({0, 10}, 0.9), 9.0);
+}
+
+TEST(HertzContactTime, GlassSphere) {
+  // 2.868 (m²/(R E*² v))^{1/5} for R = 1 cm, m = 2500·4/3πR³, E* = 30 GPa, v = 1 m/s
+  const double r = 0.01, m = 2500 * 4.0 / 3 * std::numbers::pi * r * r * r;
+  const double expected = 2.868 * std::pow(m * m / (r * 3e10 * 3e10 * 1.0), 0.2);
+  EXPECT_DOUBLE_EQ(hertz_contact_time(r, m, 3e10, 1.0), expected);
+  // slower impacts last longer: t ∝ v^(−1/5)
+  EXPECT_NEAR(hertz_contact_time(r, m, 3e10, 32.0) / expected, 0.5, 1e-12);
+}
+
+}  // namespace
+}  // namespace asperity::study
