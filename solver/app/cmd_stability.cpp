@@ -31,7 +31,7 @@ void add_stability_command(CLI::App& app, Action& action) {
                   "(default 0.05,0.1,0.25,0.5,0.75,0.9,1,1.1,1.25,1.5,2,3,5)");
   cmd->add_option("--reference-factor", args->reference_factor,
                   "Factor of the converged reference run for the accuracy columns (default: the "
-                  "smaller of dt_safety and an eighth of the smallest factor)");
+                  "smaller of the automatic step's dt_safety and an eighth of the smallest factor)");
   cmd->add_flag("-q,--quiet", args->quiet, "Only errors on stderr");
   cmd->callback([args, &action] {
     action = [args] {
