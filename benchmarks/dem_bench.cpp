@@ -12,8 +12,12 @@ using namespace asperity;
 
 dem::SphereWorld make_world(int n, double radius, bool hertz_mindlin) {
   dem::SphereWorld w;
-  w.materials = {{.name = "glass", .density = 2500, .young = 6.3e10, .poisson = 0.23,
-                  .friction = 0.3, .restitution = 0.8}};
+  w.materials = {{.name = "glass",
+                  .density = 2500,
+                  .young = 6.3e10,
+                  .poisson = 0.23,
+                  .friction = 0.3,
+                  .restitution = 0.8}};
   w.law.normal = contact::NormalLaw::hertz;
   w.law.tangential = hertz_mindlin;
   const double m = 2500 * 4.0 / 3.0 * std::numbers::pi * radius * radius * radius;
@@ -37,8 +41,11 @@ void BM_HertzPair100kSteps(benchmark::State& state) {
     dem::SphereWorld w = make_world(1, 0.01, true);
     w.x.col(0) = Vec3(0, 0, 0.01 + 1e-7);
     w.v.col(0) = Vec3(0.1, 0, -1);
-    w.walls.push_back({.kind = dem::WallKind::plane, .a = Vec3::Zero(), .b = Vec3::UnitZ(),
-                       .material = 0, .body = 1});
+    w.walls.push_back({.kind = dem::WallKind::plane,
+                       .a = Vec3::Zero(),
+                       .b = Vec3::UnitZ(),
+                       .material = 0,
+                       .body = 1});
     w.record_body = 0;
     dem::initialise(w);
     state.ResumeTiming();
@@ -59,9 +66,13 @@ void BM_Packing10k(benchmark::State& state) {
   int i = 0;
   for (int z = 0; z < side_z; ++z)
     for (int y = 0; y < side_y; ++y)
-      for (int x = 0; x < side_x; ++x) w.x.col(i++) = Vec3(x * spacing, y * spacing, r * (1 - 1e-3) + z * spacing);
-  w.walls.push_back({.kind = dem::WallKind::plane, .a = Vec3::Zero(), .b = Vec3::UnitZ(),
-                     .material = 0, .body = -2});
+      for (int x = 0; x < side_x; ++x)
+        w.x.col(i++) = Vec3(x * spacing, y * spacing, r * (1 - 1e-3) + z * spacing);
+  w.walls.push_back({.kind = dem::WallKind::plane,
+                     .a = Vec3::Zero(),
+                     .b = Vec3::UnitZ(),
+                     .material = 0,
+                     .body = -2});
   w.gravity = Vec3(0, 0, -9.81);
   w.record_body = 0;
   dem::initialise(w);
@@ -71,10 +82,12 @@ void BM_Packing10k(benchmark::State& state) {
     for (int k = 0; k < 20; ++k) dem::step(w, 1e-8);
     steps += 20;
   }
-  state.counters["steps/s"] = benchmark::Counter(static_cast<double>(steps), benchmark::Counter::kIsRate);
-  state.counters["contacts/s"] =
-      benchmark::Counter(static_cast<double>(w.contact_updates - updates0), benchmark::Counter::kIsRate);
-  state.counters["contacts"] = static_cast<double>(w.contact_updates - updates0) / static_cast<double>(steps);
+  state.counters["steps/s"] =
+      benchmark::Counter(static_cast<double>(steps), benchmark::Counter::kIsRate);
+  state.counters["contacts/s"] = benchmark::Counter(
+      static_cast<double>(w.contact_updates - updates0), benchmark::Counter::kIsRate);
+  state.counters["contacts"] =
+      static_cast<double>(w.contact_updates - updates0) / static_cast<double>(steps);
 }
 BENCHMARK(BM_Packing10k)->Arg(0)->Arg(1)->ArgName("mindlin")->Unit(benchmark::kMillisecond);
 

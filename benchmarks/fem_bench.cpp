@@ -30,8 +30,8 @@ void BM_InternalForces(benchmark::State& state) {
     benchmark::DoNotOptimize(f.data());
   }
   state.counters["tets"] = e.size();
-  state.counters["tet_updates/s"] =
-      benchmark::Counter(static_cast<double>(e.size()), benchmark::Counter::kIsIterationInvariantRate);
+  state.counters["tet_updates/s"] = benchmark::Counter(
+      static_cast<double>(e.size()), benchmark::Counter::kIsIterationInvariantRate);
 }
 BENCHMARK(BM_InternalForces)->Arg(8)->Arg(16)->Arg(24);
 
@@ -68,12 +68,16 @@ void BM_Collision(benchmark::State& state) {
     fdem::WorldDef def;
     TetMesh m = mesh;
     m.nodes.row(2).array() += 0.0002 - m.nodes.row(2).minCoeff();
-    def.bodies.push_back({.name = "rock", .kind = fdem::BodyKind::deformable, .mesh = m,
-                          .material = rock, .velocity = Vec3(0, 0, -1)});
-    def.bodies.push_back({.name = "block",
-                          .kind = fdem::BodyKind::fixed,
-                          .mesh = fdem::box_mesh(Vec3(-0.1, -0.1, -0.05), Vec3(0.1, 0.1, 0), 1, 1, 1),
-                          .material = rock});
+    def.bodies.push_back({.name = "rock",
+                          .kind = fdem::BodyKind::deformable,
+                          .mesh = m,
+                          .material = rock,
+                          .velocity = Vec3(0, 0, -1)});
+    def.bodies.push_back(
+        {.name = "block",
+         .kind = fdem::BodyKind::fixed,
+         .mesh = fdem::box_mesh(Vec3(-0.1, -0.1, -0.05), Vec3(0.1, 0.1, 0), 1, 1, 1),
+         .material = rock});
     def.record_body = 0;
     fdem::World w = fdem::make_world(def);
     const std::clock_t c0 = std::clock();
@@ -95,7 +99,14 @@ void BM_Collision(benchmark::State& state) {
     state.counters["frac_integrate"] = p.integrate / all;
   }
 }
-BENCHMARK(BM_Collision)->Arg(100)->Arg(250)->Arg(500)->Arg(1000)->Iterations(1)->UseManualTime()->Unit(benchmark::kSecond);
+BENCHMARK(BM_Collision)
+    ->Arg(100)
+    ->Arg(250)
+    ->Arg(500)
+    ->Arg(1000)
+    ->Iterations(1)
+    ->UseManualTime()
+    ->Unit(benchmark::kSecond);
 #endif
 
 }  // namespace

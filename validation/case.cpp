@@ -18,7 +18,8 @@ using io::JsonReader;
 // The analytic elastic Hertz impact of a two-body scene: a sphere against a sphere, plane or box,
 // no gravity. v is the relative approach speed along the line of centres (or the wall normal).
 contact::HertzImpact hertz_reference(const scene::SceneDef& s, const JsonReader& where) {
-  if (s.bodies.size() != 2) where.fail("reference", "\"hertz\" needs a scene of exactly two bodies");
+  if (s.bodies.size() != 2)
+    where.fail("reference", "\"hertz\" needs a scene of exactly two bodies");
   if (s.gravity.norm() != 0) where.fail("reference", "\"hertz\" needs a scene without gravity");
   const scene::BodyDef *a = &s.bodies[0], *b = &s.bodies[1];
   if (!std::holds_alternative<scene::SphereShape>(a->shape)) std::swap(a, b);
@@ -52,7 +53,8 @@ double target_restitution(const scene::SceneDef& s) {
   return e;
 }
 
-std::optional<double> summary_number(const nlohmann::ordered_json& summary, const std::string& key) {
+std::optional<double> summary_number(const nlohmann::ordered_json& summary,
+                                     const std::string& key) {
   auto it = summary.find(key);
   if (it == summary.end() || !it->is_number()) return std::nullopt;
   return it->get<double>();
@@ -70,7 +72,8 @@ CaseDef load_case(const std::filesystem::path& file) {
   c.description = r.has("description") ? r.string("description") : "";
   if (r.has("tags")) {
     const JsonReader t = r.child("tags");
-    for (std::size_t i = 0; i < t.require_array(); ++i) c.tags.push_back(t.at(i).value().get<std::string>());
+    for (std::size_t i = 0; i < t.require_array(); ++i)
+      c.tags.push_back(t.at(i).value().get<std::string>());
   }
   r.child("scene").require_object();
   c.scene = scene::parse_scene(json.at("scene"), file, "scene");
@@ -121,11 +124,17 @@ CaseDef load_case(const std::filesystem::path& file) {
       ch.reference = e.string("reference");
       if (ch.reference == "hertz") {
         if (!hertz) hertz = hertz_reference(c.scene, e);
-        if (quantity == "peak_force") ch.expected = hertz->peak_force;
-        else if (quantity == "max_overlap") ch.expected = hertz->max_overlap;
-        else if (quantity == "contact_duration") ch.expected = hertz->contact_duration;
-        else if (quantity == "impulse") ch.expected = hertz->impulse;
-        else e.fail("reference", "\"hertz\" gives peak_force, max_overlap, contact_duration or impulse");
+        if (quantity == "peak_force")
+          ch.expected = hertz->peak_force;
+        else if (quantity == "max_overlap")
+          ch.expected = hertz->max_overlap;
+        else if (quantity == "contact_duration")
+          ch.expected = hertz->contact_duration;
+        else if (quantity == "impulse")
+          ch.expected = hertz->impulse;
+        else
+          e.fail("reference",
+                 "\"hertz\" gives peak_force, max_overlap, contact_duration or impulse");
       } else if (ch.reference == "target_restitution") {
         ch.expected = target_restitution(c.scene);
       } else {
@@ -147,7 +156,8 @@ CaseDef load_case(const std::filesystem::path& file) {
 std::vector<std::filesystem::path> find_cases(const std::filesystem::path& path) {
   std::vector<std::filesystem::path> out;
   if (std::filesystem::is_regular_file(path)) return {path};
-  if (!std::filesystem::is_directory(path)) throw InputError(path.string() + ": no such case file or folder");
+  if (!std::filesystem::is_directory(path))
+    throw InputError(path.string() + ": no such case file or folder");
   for (const auto& e : std::filesystem::recursive_directory_iterator(path)) {
     if (e.is_regular_file() && e.path().extension() == ".json") out.push_back(e.path());
   }
@@ -174,14 +184,21 @@ CaseResult run_case(const CaseDef& def) {
     cr.check = ch;
     if (ch.reference == "equals") {
       auto it = r.run.summary.find(ch.quantity);
-      cr.got_text = it == r.run.summary.end() ? "(missing)" : (it->is_string() ? it->get<std::string>() : it->dump());
+      cr.got_text = it == r.run.summary.end()
+                        ? "(missing)"
+                        : (it->is_string() ? it->get<std::string>() : it->dump());
       cr.passed = cr.got_text == ch.text;
     } else if (auto got = summary_number(r.run.summary, ch.quantity)) {
       cr.got = *got;
-      if (ch.reference == "range") cr.passed = cr.got >= ch.expected && cr.got <= ch.upper;
-      else if (ch.reference == "max") cr.passed = cr.got <= ch.expected;
-      else if (ch.reference == "min") cr.passed = cr.got >= ch.expected;
-      else cr.passed = std::abs(cr.got - ch.expected) <= ch.rel_tol * std::abs(ch.expected) + ch.abs_tol;
+      if (ch.reference == "range")
+        cr.passed = cr.got >= ch.expected && cr.got <= ch.upper;
+      else if (ch.reference == "max")
+        cr.passed = cr.got <= ch.expected;
+      else if (ch.reference == "min")
+        cr.passed = cr.got >= ch.expected;
+      else
+        cr.passed =
+            std::abs(cr.got - ch.expected) <= ch.rel_tol * std::abs(ch.expected) + ch.abs_tol;
     } else {
       cr.got = std::nan("");
       cr.got_text = "(missing)";
@@ -210,9 +227,11 @@ nlohmann::ordered_json to_json(const CaseResult& r) {
       k["expected"] = c.check.expected;
       k["got"] = std::isfinite(c.got) ? nlohmann::ordered_json(c.got) : nlohmann::ordered_json();
       if (c.check.reference == "range") k["upper"] = c.check.upper;
-      if (c.check.reference != "max" && c.check.reference != "min" && c.check.reference != "range") {
-        k["rel_error"] = c.check.expected != 0 ? (c.got - c.check.expected) / std::abs(c.check.expected)
-                                               : c.got - c.check.expected;
+      if (c.check.reference != "max" && c.check.reference != "min" &&
+          c.check.reference != "range") {
+        k["rel_error"] = c.check.expected != 0
+                             ? (c.got - c.check.expected) / std::abs(c.check.expected)
+                             : c.got - c.check.expected;
         k["rel_tol"] = c.check.rel_tol;
         k["abs_tol"] = c.check.abs_tol;
       }

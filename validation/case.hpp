@@ -23,8 +23,8 @@ struct Check {
   double upper = 0;       // the upper bound for "range"
   double rel_tol = 0;     // |got − expected| ≤ rel_tol·|expected| + abs_tol
   double abs_tol = 0;
-  std::string why;        // the tolerance's reason (and the reference's source)
-  std::string text;       // for "equals" (status)
+  std::string why;   // the tolerance's reason (and the reference's source)
+  std::string text;  // for "equals" (status)
 };
 
 struct CaseDef {

@@ -28,7 +28,8 @@
 #include "scene/scene_json.hpp"
 
 #ifndef ASPERITY_YADE_SCRIPT
-#error "ASPERITY_YADE_SCRIPT (path of validation/yade/scene_to_yade.py) must be defined by the build"
+#error \
+    "ASPERITY_YADE_SCRIPT (path of validation/yade/scene_to_yade.py) must be defined by the build"
 #endif
 
 namespace asperity::app {
@@ -45,14 +46,20 @@ scene::SceneDef load_scene_or_case(const fs::path& file) {
   return scene::load_scene(file);
 }
 
-Json vec(const Vec3& v) { return Json::array({v.x(), v.y(), v.z()}); }
+Json vec(const Vec3& v) {
+  return Json::array({v.x(), v.y(), v.z()});
+}
 
 const char* law_key(scene::ContactLaw law) {
   switch (law) {
-    case scene::ContactLaw::hertz: return "hertz";
-    case scene::ContactLaw::hertz_mindlin: return "hertz-mindlin";
-    case scene::ContactLaw::linear: return "linear";
-    case scene::ContactLaw::potential: return "potential";
+    case scene::ContactLaw::hertz:
+      return "hertz";
+    case scene::ContactLaw::hertz_mindlin:
+      return "hertz-mindlin";
+    case scene::ContactLaw::linear:
+      return "linear";
+    case scene::ContactLaw::potential:
+      return "potential";
   }
   return "?";
 }
@@ -64,41 +71,56 @@ Json yade_input(const scene::SceneDef& s, double dt, long steps) {
   j["scene"] = s.name;
   j["law"] = law_key(s.contact.law);
   if (s.contact.law == scene::ContactLaw::potential) {
-    throw InputError(where + "contact.law: \"potential\" has no YADE counterpart in the cross-check "
-                             "(spheres, planes and boxes with hertz, hertz-mindlin or linear)");
+    throw InputError(where +
+                     "contact.law: \"potential\" has no YADE counterpart in the cross-check "
+                     "(spheres, planes and boxes with hertz, hertz-mindlin or linear)");
   }
-  const contact::NormalLaw normal =
-      s.contact.law == scene::ContactLaw::linear ? contact::NormalLaw::linear : contact::NormalLaw::hertz;
+  const contact::NormalLaw normal = s.contact.law == scene::ContactLaw::linear
+                                        ? contact::NormalLaw::linear
+                                        : contact::NormalLaw::hertz;
   if (s.contact.law == scene::ContactLaw::linear) {
     j["kn"] = *s.contact.kn;
-    j["kt"] = s.contact.kt.value_or(2.0 / 7.0 * *s.contact.kn);  // asperity's default (run_scene.cpp)
+    j["kt"] =
+        s.contact.kt.value_or(2.0 / 7.0 * *s.contact.kn);  // asperity's default (run_scene.cpp)
   }
   // The hertz law has no tangential force: friction 0 caps YADE's shear force at zero.
-  if (s.contact.law == scene::ContactLaw::hertz) j["friction_override"] = 0.0;
-  else if (s.contact.friction) j["friction_override"] = *s.contact.friction;
-  else j["friction_override"] = nullptr;
+  if (s.contact.law == scene::ContactLaw::hertz)
+    j["friction_override"] = 0.0;
+  else if (s.contact.friction)
+    j["friction_override"] = *s.contact.friction;
+  else
+    j["friction_override"] = nullptr;
   j["materials"] = Json::object();
   for (const Material& m : s.materials) {
-    j["materials"][m.name] = {{"density", m.density}, {"young", m.young}, {"poisson", m.poisson},
-                              {"friction", m.friction}, {"restitution", m.restitution}};
+    j["materials"][m.name] = {{"density", m.density},
+                              {"young", m.young},
+                              {"poisson", m.poisson},
+                              {"friction", m.friction},
+                              {"restitution", m.restitution}};
   }
   j["pairs"] = Json::array();
   for (std::size_t a = 0; a < s.materials.size(); ++a) {
     for (std::size_t b = a; b < s.materials.size(); ++b) {
-      const double e = s.contact.restitution.value_or(pair_restitution(s.materials[a], s.materials[b]));
-      j["pairs"].push_back({{"a", s.materials[a].name}, {"b", s.materials[b].name},
+      const double e =
+          s.contact.restitution.value_or(pair_restitution(s.materials[a], s.materials[b]));
+      j["pairs"].push_back({{"a", s.materials[a].name},
+                            {"b", s.materials[b].name},
                             {"zeta", contact::damping_for_restitution(normal, e)}});
     }
   }
   j["bodies"] = Json::array();
   for (std::size_t k = 0; k < s.bodies.size(); ++k) {
     const scene::BodyDef& b = s.bodies[k];
-    Json body{{"name", b.name}, {"material", s.materials[b.material].name}, {"fixed", b.fixed},
-              {"position", vec(b.position)}, {"velocity", vec(b.fixed ? Vec3::Zero() : b.velocity)},
+    Json body{{"name", b.name},
+              {"material", s.materials[b.material].name},
+              {"fixed", b.fixed},
+              {"position", vec(b.position)},
+              {"velocity", vec(b.fixed ? Vec3::Zero() : b.velocity)},
               {"angular_velocity", vec(b.fixed ? Vec3::Zero() : b.angular_velocity)}};
     if (b.model != scene::Model::rigid) {
-      throw InputError(where + "bodies[" + std::to_string(k) + "] \"" + b.name +
-                       "\": model: the cross-check runs rigid bodies only (YADE has no FEM body here)");
+      throw InputError(
+          where + "bodies[" + std::to_string(k) + "] \"" + b.name +
+          "\": model: the cross-check runs rigid bodies only (YADE has no FEM body here)");
     }
     if (const auto* sp = std::get_if<scene::SphereShape>(&b.shape)) {
       body["shape"] = {{"type", "sphere"}, {"radius", sp->radius}};
@@ -137,7 +159,8 @@ std::string shell_quote(const std::string& s) {
 
 // The executable `name` resolves to on PATH (or itself when it names a path); empty if none.
 fs::path find_executable(const std::string& name) {
-  if (name.find('/') != std::string::npos) return ::access(name.c_str(), X_OK) == 0 ? fs::path(name) : fs::path();
+  if (name.find('/') != std::string::npos)
+    return ::access(name.c_str(), X_OK) == 0 ? fs::path(name) : fs::path();
   const char* path = std::getenv("PATH");
   std::stringstream dirs(path ? path : "");
   for (std::string dir; std::getline(dirs, dir, ':');) {
@@ -175,7 +198,8 @@ std::vector<YadeRow> read_raw_csv(const fs::path& file) {
   std::vector<YadeRow> rows;
   while (std::getline(in, line)) {
     YadeRow r{};
-    if (std::sscanf(line.c_str(), "%lf,%lf,%lf,%lf,%lf,%lf", &r.t, &r.fx, &r.fy, &r.fz, &r.s, &r.rate) != 6) {
+    if (std::sscanf(line.c_str(), "%lf,%lf,%lf,%lf,%lf,%lf", &r.t, &r.fx, &r.fy, &r.fz, &r.s,
+                    &r.rate) != 6) {
       throw std::runtime_error(file.string() + ": unreadable row \"" + line + "\"");
     }
     rows.push_back(r);
@@ -184,7 +208,8 @@ std::vector<YadeRow> read_raw_csv(const fs::path& file) {
 }
 
 // YADE's summary.json and force.csv, measured by the code that measures asperity's runs.
-run::RunResult yade_result(const scene::SceneDef& s, const Json& raw, const std::vector<YadeRow>& rows) {
+run::RunResult yade_result(const scene::SceneDef& s, const Json& raw,
+                           const std::vector<YadeRow>& rows) {
   run::RunResult r;
   if (rows.empty()) throw std::runtime_error("YADE recorded no rows");
   run::ImpactMeasures im;
@@ -233,14 +258,16 @@ run::RunResult yade_result(const scene::SceneDef& s, const Json& raw, const std:
       return run::BodyMotion{.v = Vec3(v[0].get<double>(), v[1].get<double>(), v[2].get<double>()),
                              .w = Vec3(w[0].get<double>(), w[1].get<double>(), w[2].get<double>())};
     };
-    run::add_rebound_measures(s, *impact, motion(s.record.body), motion(impact->partner), ended > 0, j);
+    run::add_rebound_measures(s, *impact, motion(s.record.body), motion(impact->partner), ended > 0,
+                              j);
   }
   j["dt"] = raw.at("dt");
   j["steps"] = raw.at("steps");
   j["simulated_time"] = raw.at("dt").get<double>() * raw.at("steps").get<double>();
   j["cpu_seconds"] = raw.at("cpu_seconds");
   j["wall_seconds"] = raw.at("wall_seconds");
-  j["cpu_seconds_note"] = "YADE's engine loop alone (a second run, without the per-step Python recorder)";
+  j["cpu_seconds_note"] =
+      "YADE's engine loop alone (a second run, without the per-step Python recorder)";
   j["stiffness"] = raw.at("stiffness");
   return r;
 }
@@ -263,22 +290,26 @@ int cmd_crosscheck(const fs::path& scene_file, const fs::path& out, const std::s
   const scene::SceneDef s = load_scene_or_case(scene_file);
   const fs::path exe = find_executable(yade);
   if (exe.empty()) {
-    throw InputError("crosscheck: YADE not found (\"" + yade + "\" is not an executable on PATH; "
+    throw InputError("crosscheck: YADE not found (\"" + yade +
+                     "\" is not an executable on PATH; "
                      "install the Debian package yade or pass --yade PATH)");
   }
-  if (!fs::is_regular_file(script)) throw InputError("crosscheck: " + script.string() + ": YADE translator script not found");
+  if (!fs::is_regular_file(script))
+    throw InputError("crosscheck: " + script.string() + ": YADE translator script not found");
 
   // Nothing from an earlier cross-check may be mistaken for this one's.
   fs::create_directories(out / "yade");
   for (const char* f : {"comparison.json"}) fs::remove(out / f);
-  for (const char* f : {"summary.json", "force.csv", "raw.csv", "raw.json", "error.txt", "yade.log"}) {
+  for (const char* f :
+       {"summary.json", "force.csv", "raw.csv", "raw.json", "error.txt", "yade.log"}) {
     fs::remove(out / "yade" / f);
   }
 
   const run::RunResult a = run::run_scene(s, {.keep_rows = true});
   run::write_outputs(a, out / "asperity");
   if (a.status == "unstable") {
-    std::cerr << "asperity: crosscheck: asperity's run went unstable (" << a.message << "); YADE not run\n";
+    std::cerr << "asperity: crosscheck: asperity's run went unstable (" << a.message
+              << "); YADE not run\n";
     return kExitUnstable;
   }
   const double dt = a.summary.at("dt").get<double>();
@@ -286,20 +317,23 @@ int cmd_crosscheck(const fs::path& scene_file, const fs::path& out, const std::s
   const Json input = yade_input(s, dt, steps);
   write_file(out / "yade" / "input.json", input.dump(2) + "\n");
 
-  const std::string cmd = shell_quote(exe.string()) + " -n -x " + shell_quote(script.string()) + " " +
-                          shell_quote((out / "yade" / "input.json").string()) + " " +
+  const std::string cmd = shell_quote(exe.string()) + " -n -x " + shell_quote(script.string()) +
+                          " " + shell_quote((out / "yade" / "input.json").string()) + " " +
                           shell_quote((out / "yade").string()) + " > " +
                           shell_quote((out / "yade" / "yade.log").string()) + " 2>&1 < /dev/null";
   const int status = std::system(cmd.c_str());
-  const int code = status == -1 ? -1 : (WIFEXITED(status) ? WEXITSTATUS(status) : 128 + WTERMSIG(status));
+  const int code =
+      status == -1 ? -1 : (WIFEXITED(status) ? WEXITSTATUS(status) : 128 + WTERMSIG(status));
   if (code != 0 || !fs::exists(out / "yade" / "raw.json")) {
-    throw InputError("crosscheck: YADE failed (exit " + std::to_string(code) + "): " +
-                     yade_error_text(out / "yade") + " [log: " + (out / "yade" / "yade.log").string() + "]");
+    throw InputError("crosscheck: YADE failed (exit " + std::to_string(code) +
+                     "): " + yade_error_text(out / "yade") +
+                     " [log: " + (out / "yade" / "yade.log").string() + "]");
   }
   const Json raw = Json::parse(std::ifstream(out / "yade" / "raw.json"));
   const run::RunResult y = yade_result(s, raw, read_raw_csv(out / "yade" / "raw.csv"));
   run::write_outputs(y, out / "yade");
-  fs::remove(out / "yade" / "energy.csv");  // YADE's energy terms are not recorded (docs/crosscheck.md)
+  fs::remove(out / "yade" /
+             "energy.csv");  // YADE's energy terms are not recorded (docs/crosscheck.md)
 
   Json c;
   c["scene"] = s.name;
@@ -308,16 +342,21 @@ int cmd_crosscheck(const fs::path& scene_file, const fs::path& out, const std::s
   c["dt"] = dt;
   c["steps"] = steps;
   c["status"] = {{"asperity", a.status}, {"yade", y.status}};
-  for (const char* q : {"peak_force", "impulse", "contact_duration"}) c[q] = compare(a.summary, y.summary, q);
+  for (const char* q : {"peak_force", "impulse", "contact_duration"})
+    c[q] = compare(a.summary, y.summary, q);
   Json more = Json::object();
-  for (const char* q : {"max_overlap", "first_contact_time", "restitution", "tangential_restitution", "slip_ratio",
-                        "spin_out", "rebound_angle_deg", "slip_velocity_out", "normal_velocity_out",
-                        "angular_velocity_change", "tangential_speed_out"}) {
+  for (const char* q :
+       {"max_overlap", "first_contact_time", "restitution", "tangential_restitution", "slip_ratio",
+        "spin_out", "rebound_angle_deg", "slip_velocity_out", "normal_velocity_out",
+        "angular_velocity_change", "tangential_speed_out"}) {
     if (a.summary.contains(q) || y.summary.contains(q)) more[q] = compare(a.summary, y.summary, q);
   }
   c["other"] = more;
-  const double cpu_a = a.summary.at("cpu_seconds").get<double>(), cpu_y = raw.at("cpu_seconds").get<double>();
-  c["cpu_seconds"] = {{"asperity", cpu_a}, {"yade", cpu_y}, {"ratio_asperity_over_yade", cpu_y > 0 ? Json(cpu_a / cpu_y) : Json()}};
+  const double cpu_a = a.summary.at("cpu_seconds").get<double>(),
+               cpu_y = raw.at("cpu_seconds").get<double>();
+  c["cpu_seconds"] = {{"asperity", cpu_a},
+                      {"yade", cpu_y},
+                      {"ratio_asperity_over_yade", cpu_y > 0 ? Json(cpu_a / cpu_y) : Json()}};
   double stiff = 0;
   for (const auto& k : raw.at("stiffness")) stiff = std::max(stiff, k.at("rel_diff").get<double>());
   c["stiffness_rel_diff_max"] = stiff;
@@ -334,8 +373,9 @@ int cmd_crosscheck(const fs::path& scene_file, const fs::path& out, const std::s
   write_file(out / "comparison.json", c.dump(2) + "\n");
   if (!quiet) {
     std::cerr << s.name << ": peak force " << c["peak_force"]["rel_diff"].dump() << ", impulse "
-              << c["impulse"]["rel_diff"].dump() << ", duration " << c["contact_duration"]["rel_diff"].dump()
-              << " (asperity - YADE)/YADE; CPU " << cpu_a << " s vs " << cpu_y << " s -> " << out.string() << "\n";
+              << c["impulse"]["rel_diff"].dump() << ", duration "
+              << c["contact_duration"]["rel_diff"].dump() << " (asperity - YADE)/YADE; CPU "
+              << cpu_a << " s vs " << cpu_y << " s -> " << out.string() << "\n";
   }
   return passed || !max_rel_diff ? kExitOk : kExitFailure;
 }
@@ -350,20 +390,23 @@ void add_crosscheck_command(CLI::App& app, Action& action) {
     bool quiet = false;
   };
   auto args = std::make_shared<Args>();
-  auto* cc = app.add_subcommand("crosscheck",
-                                "Run a scene (or a validation case's scene) in asperity and in YADE: writes "
-                                "DIR/asperity/, DIR/yade/, DIR/comparison.json");
+  auto* cc = app.add_subcommand(
+      "crosscheck",
+      "Run a scene (or a validation case's scene) in asperity and in YADE: writes "
+      "DIR/asperity/, DIR/yade/, DIR/comparison.json");
   cc->add_option("scene", args->scene, "Scene file, or a validation case file")->required();
   cc->add_option("--out", args->out, "Output folder")->required();
   cc->add_option("--yade", args->yade, "YADE executable (default: yade on PATH)");
   cc->add_option("--yade-script", args->script, "The scene translator run by YADE");
   cc->add_option("--max-rel-diff", args->max_rel_diff,
-                 "Exit 1 unless peak force, impulse and contact duration agree within this relative difference")
+                 "Exit 1 unless peak force, impulse and contact duration agree within this "
+                 "relative difference")
       ->check(CLI::PositiveNumber);
   cc->add_flag("-q,--quiet", args->quiet, "No summary line on stderr");
   cc->callback([args, &action] {
     action = [args] {
-      return cmd_crosscheck(args->scene, args->out, args->yade, args->script, args->max_rel_diff, args->quiet);
+      return cmd_crosscheck(args->scene, args->out, args->yade, args->script, args->max_rel_diff,
+                            args->quiet);
     };
   });
 }

@@ -1,5 +1,6 @@
-// `asperity mesh INPUT --faces N --out DIR`: check and repair a surface mesh, simplify it to exactly
-// N triangles, tetrahedralize it keeping them; DIR/surface.off, DIR/tets.vtk, DIR/mesh.json.
+// `asperity mesh INPUT --faces N --out DIR`: check and repair a surface mesh, simplify it to
+// exactly N triangles, tetrahedralize it keeping them; DIR/surface.off, DIR/tets.vtk,
+// DIR/mesh.json.
 #include <filesystem>
 #include <iostream>
 #include <memory>
@@ -31,12 +32,15 @@ int cmd_mesh(const MeshArgs& a) {
   const geometry::PreparedParticle p = geometry::prepare_particle(a.input, options);
   geometry::write_prepared_particle(p, a.out);
   if (!a.quiet) {
-    for (const auto& w : p.log.warnings) std::cerr << "asperity: warning: " << a.input.string() << ": " << w << "\n";
-    std::cerr << a.input.string() << ": " << p.source.faces.cols() << " -> " << p.surface.faces.cols()
-              << " triangles, volume change " << p.change.volume_change_rel << ", max asperity "
-              << p.change.max_asperity_rel_source << " -> " << p.change.max_asperity_rel;
+    for (const auto& w : p.log.warnings)
+      std::cerr << "asperity: warning: " << a.input.string() << ": " << w << "\n";
+    std::cerr << a.input.string() << ": " << p.source.faces.cols() << " -> "
+              << p.surface.faces.cols() << " triangles, volume change "
+              << p.change.volume_change_rel << ", max asperity " << p.change.max_asperity_rel_source
+              << " -> " << p.change.max_asperity_rel;
     if (!a.no_tets) {
-      std::cerr << ", " << p.quality.tets << " tets (min dihedral " << p.quality.min_dihedral_deg << " deg)";
+      std::cerr << ", " << p.quality.tets << " tets (min dihedral " << p.quality.min_dihedral_deg
+                << " deg)";
     }
     std::cerr << " -> " << a.out.string() << "\n";
   }
@@ -48,19 +52,23 @@ int cmd_mesh(const MeshArgs& a) {
 void add_mesh_command(CLI::App& app, Action& action) {
   auto args = std::make_shared<MeshArgs>();
   auto* cmd = app.add_subcommand(
-      "mesh", "Check a surface mesh (STL, OBJ, PLY, OFF), simplify it to exactly N triangles and "
-              "tetrahedralize it keeping them: writes DIR/surface.off, DIR/tets.vtk, DIR/mesh.json");
+      "mesh",
+      "Check a surface mesh (STL, OBJ, PLY, OFF), simplify it to exactly N triangles and "
+      "tetrahedralize it keeping them: writes DIR/surface.off, DIR/tets.vtk, DIR/mesh.json");
   cmd->add_option("input", args->input, "Surface mesh file (.stl, .obj, .ply, .off)")->required();
   cmd->add_option("--faces", args->faces,
-                  "Exact triangle count of the result: even, at least 4, at most the input's (default: keep)")
+                  "Exact triangle count of the result: even, at least 4, at most the input's "
+                  "(default: keep)")
       ->check(CLI::NonNegativeNumber);
   cmd->add_option("--out", args->out, "Output folder")->required();
-  cmd->add_option("--scale", args->scale, "Factor to metres for every coordinate (1e-3 for millimetres)")
+  cmd->add_option("--scale", args->scale,
+                  "Factor to metres for every coordinate (1e-3 for millimetres)")
       ->check(CLI::PositiveNumber);
   cmd->add_option("--quality", args->quality,
                   "TetGen radius-edge bound with interior points only (0: no refinement)")
       ->check(CLI::NonNegativeNumber);
-  cmd->add_option("--min-dihedral", args->min_dihedral, "TetGen smallest dihedral angle asked for, degrees")
+  cmd->add_option("--min-dihedral", args->min_dihedral,
+                  "TetGen smallest dihedral angle asked for, degrees")
       ->check(CLI::Range(0.0, 70.0));
   cmd->add_flag("--no-tets", args->no_tets, "Surface only: no tetrahedralization");
   cmd->add_flag("-q,--quiet", args->quiet, "No summary line on stderr");

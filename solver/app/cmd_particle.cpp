@@ -46,16 +46,19 @@ int make_set(const fs::path& set_file, const fs::path& dir, bool quiet) {
   const std::size_t n = list.require_array();
   for (std::size_t i = 0; i < n; ++i) {
     const io::JsonReader r = list.at(i);
-    r.only_keys({"name", "seed", "size", "elongation", "flatness", "angularity", "roughness", "faces"});
+    r.only_keys(
+        {"name", "seed", "size", "elongation", "flatness", "angularity", "roughness", "faces"});
     geometry::ParticleDef d;
-    d.seed = static_cast<std::uint64_t>(r.integer("seed", 0, std::numeric_limits<long long>::max()));
+    d.seed =
+        static_cast<std::uint64_t>(r.integer("seed", 0, std::numeric_limits<long long>::max()));
     d.size = r.number_or("size", d.size);
     d.elongation = r.number_or("elongation", d.elongation);
     d.flatness = r.number_or("flatness", d.flatness);
     d.angularity = r.number_or("angularity", d.angularity);
     d.roughness = r.number_or("roughness", d.roughness);
     if (r.has("faces")) d.faces = static_cast<long>(r.integer("faces", 20, 2'000'000));
-    if (const std::string problem = geometry::particle_def_problem(d); !problem.empty()) r.fail("", problem);
+    if (const std::string problem = geometry::particle_def_problem(d); !problem.empty())
+      r.fail("", problem);
     make_particle(d, dir / (r.string("name") + "." + format), quiet);
   }
   return kExitOk;
@@ -66,21 +69,29 @@ int make_set(const fs::path& set_file, const fs::path& dir, bool quiet) {
 void add_particle_command(CLI::App& app, Action& action) {
   auto args = std::make_shared<ParticleArgs>();
   auto* cmd = app.add_subcommand(
-      "particle", "Generate a reproducible rock-like particle surface (closed, outward) into FILE "
-                  "(.off, .obj, .ply, .stl); or with --set, every particle a set file lists into DIR");
+      "particle",
+      "Generate a reproducible rock-like particle surface (closed, outward) into FILE "
+      "(.off, .obj, .ply, .stl); or with --set, every particle a set file lists into DIR");
   cmd->add_option("--seed", args->def.seed, "Random seed (the same seed gives the same particle)");
   cmd->add_option("--out", args->out, "Output file (or folder with --set)")->required();
   cmd->add_option("--set", args->set, "A particle set (JSON, e.g. data/particles/set.json)");
   cmd->add_option("--size", args->def.size, "Equivalent-sphere diameter, m")->capture_default_str();
-  cmd->add_option("--elongation", args->def.elongation, "b/a of the base ellipsoid, (0, 1]")->capture_default_str();
-  cmd->add_option("--flatness", args->def.flatness, "c/b of the base ellipsoid, (0, 1]")->capture_default_str();
-  cmd->add_option("--angularity", args->def.angularity, "Planar cuts: 0 none to 1 many and deep")->capture_default_str();
-  cmd->add_option("--roughness", args->def.roughness, "Multi-scale surface noise, 0 to 1")->capture_default_str();
-  cmd->add_option("--faces", args->def.faces, "Triangle count (rounded to 20 n^2)")->capture_default_str();
+  cmd->add_option("--elongation", args->def.elongation, "b/a of the base ellipsoid, (0, 1]")
+      ->capture_default_str();
+  cmd->add_option("--flatness", args->def.flatness, "c/b of the base ellipsoid, (0, 1]")
+      ->capture_default_str();
+  cmd->add_option("--angularity", args->def.angularity, "Planar cuts: 0 none to 1 many and deep")
+      ->capture_default_str();
+  cmd->add_option("--roughness", args->def.roughness, "Multi-scale surface noise, 0 to 1")
+      ->capture_default_str();
+  cmd->add_option("--faces", args->def.faces, "Triangle count (rounded to 20 n^2)")
+      ->capture_default_str();
   cmd->add_flag("-q,--quiet", args->quiet, "No summary line on stderr");
   cmd->callback([args, cmd, &action] {
-    if (!args->set.empty() && cmd->count("--seed") > 0) throw CLI::ValidationError("--set", "give --seed or --set, not both");
-    if (args->set.empty() && cmd->count("--seed") == 0) throw CLI::RequiredError("--seed (or --set)");
+    if (!args->set.empty() && cmd->count("--seed") > 0)
+      throw CLI::ValidationError("--set", "give --seed or --set, not both");
+    if (args->set.empty() && cmd->count("--seed") == 0)
+      throw CLI::RequiredError("--seed (or --set)");
     action = [args] {
       if (!args->set.empty()) return make_set(args->set, args->out, args->quiet);
       if (const std::string problem = geometry::particle_def_problem(args->def); !problem.empty()) {

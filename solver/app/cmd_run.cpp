@@ -14,13 +14,16 @@ namespace fs = std::filesystem;
 
 int cmd_run(const fs::path& scene_file, const fs::path& out, bool allow_unsafe_dt, bool quiet) {
   const scene::SceneDef s = scene::load_scene(scene_file);
-  const run::RunResult r = run::run_scene(s, {.dt = std::nullopt, .allow_unsafe_dt = allow_unsafe_dt, .keep_rows = true, .progress = !quiet});
+  const run::RunResult r = run::run_scene(s, {.dt = std::nullopt,
+                                              .allow_unsafe_dt = allow_unsafe_dt,
+                                              .keep_rows = true,
+                                              .progress = !quiet});
   run::write_outputs(r, out);
   if (!quiet) {
     std::cerr << s.name << ": " << r.status << (r.message.empty() ? "" : " (" + r.message + ")")
               << ", peak force " << r.summary["peak_force"].get<double>() << " N, "
-              << r.summary["steps"].get<long>() << " steps in " << r.summary["cpu_seconds"].get<double>()
-              << " s CPU -> " << out.string() << "\n";
+              << r.summary["steps"].get<long>() << " steps in "
+              << r.summary["cpu_seconds"].get<double>() << " s CPU -> " << out.string() << "\n";
   }
   return r.status == "unstable" ? kExitUnstable : kExitOk;
 }
@@ -33,7 +36,8 @@ void add_run_command(CLI::App& app, Action& action) {
     bool allow_unsafe_dt = false, quiet = false;
   };
   auto args = std::make_shared<Args>();
-  auto* run = app.add_subcommand("run", "Run one scene: writes DIR/summary.json, DIR/force.csv, DIR/energy.csv");
+  auto* run = app.add_subcommand(
+      "run", "Run one scene: writes DIR/summary.json, DIR/force.csv, DIR/energy.csv");
   run->add_option("scene", args->scene, "Scene file (JSON, see shared/CONTRACT.md)")->required();
   run->add_option("--out", args->out, "Output folder")->required();
   run->add_flag("--allow-unsafe-dt", args->allow_unsafe_dt,

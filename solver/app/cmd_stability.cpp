@@ -26,26 +26,30 @@ void add_stability_command(CLI::App& app, Action& action) {
       "and DIR/summary.json (dt_critical_predicted, dt_stable_max_measured)");
   cmd->add_option("scene", args->scene, "Scene file (JSON)")->required();
   cmd->add_option("--out", args->out, "Output folder")->required();
-  args->factors_option = cmd->add_option("--factors", args->factors,
-                  "Comma-separated multiples of the predicted critical step "
-                  "(default 0.05,0.1,0.25,0.5,0.75,0.9,1,1.1,1.25,1.5,2,3,5)");
-  cmd->add_option("--reference-factor", args->reference_factor,
-                  "Factor of the converged reference run for the accuracy columns (default: the "
-                  "smaller of the automatic step's dt_safety and an eighth of the smallest factor)");
+  args->factors_option =
+      cmd->add_option("--factors", args->factors,
+                      "Comma-separated multiples of the predicted critical step "
+                      "(default 0.05,0.1,0.25,0.5,0.75,0.9,1,1.1,1.25,1.5,2,3,5)");
+  cmd->add_option(
+      "--reference-factor", args->reference_factor,
+      "Factor of the converged reference run for the accuracy columns (default: the "
+      "smaller of the automatic step's dt_safety and an eighth of the smallest factor)");
   cmd->add_flag("-q,--quiet", args->quiet, "Only errors on stderr");
   cmd->callback([args, &action] {
     action = [args] {
       // Validate everything before running anything.
-      const std::vector<double> factors =
-          args->factors_option->count() == 0 ? run::default_stability_factors()
-                                : run::parse_factors(args->factors, "--factors");
+      const std::vector<double> factors = args->factors_option->count() == 0
+                                              ? run::default_stability_factors()
+                                              : run::parse_factors(args->factors, "--factors");
       if (args->reference_factor < 0) throw InputError("--reference-factor: must be > 0");
       const scene::SceneDef s = scene::load_scene(args->scene);
       const auto progress = [&](const run::StabilityRow& r, int k, int n) {
         if (!args->quiet) {
-          std::fprintf(stderr, "[%d/%d] factor %-6g dt %-12.4g %-10s drift %.3g  peak error %+.2e  (%.2f s CPU)\n",
-                       k, n, r.factor, r.dt, r.status.c_str(), r.energy_drift, r.peak_force_error,
-                       r.cpu_seconds);
+          std::fprintf(
+              stderr,
+              "[%d/%d] factor %-6g dt %-12.4g %-10s drift %.3g  peak error %+.2e  (%.2f s CPU)\n",
+              k, n, r.factor, r.dt, r.status.c_str(), r.energy_drift, r.peak_force_error,
+              r.cpu_seconds);
         }
       };
       const run::StabilityResult result = run::stability_sweep(

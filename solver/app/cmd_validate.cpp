@@ -64,14 +64,16 @@ int cmd_validate(const std::vector<fs::path>& paths, const fs::path& out, bool q
           << (c["passed"].get<bool>() ? "true" : "false") << ',' << cpu << '\n';
     }
     if (!quiet) {
-      const double el = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
-      std::fprintf(stderr, "[%zu/%zu] %-48s %s  (%.2f s CPU; %.0f s elapsed)\n", k + 1, cases.size(),
-                   r.def.name.c_str(), r.passed ? "pass" : "FAIL", cpu, el);
+      const double el =
+          std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+      std::fprintf(stderr, "[%zu/%zu] %-48s %s  (%.2f s CPU; %.0f s elapsed)\n", k + 1,
+                   cases.size(), r.def.name.c_str(), r.passed ? "pass" : "FAIL", cpu, el);
       if (!r.passed) {
         for (const auto& c : j["checks"]) {
           if (!c["passed"].get<bool>()) {
-            std::fprintf(stderr, "    %s: expected %s, got %s\n", c["quantity"].get<std::string>().c_str(),
-                         c["expected"].dump().c_str(), c["got"].dump().c_str());
+            std::fprintf(stderr, "    %s: expected %s, got %s\n",
+                         c["quantity"].get<std::string>().c_str(), c["expected"].dump().c_str(),
+                         c["got"].dump().c_str());
           }
         }
       }
@@ -95,14 +97,18 @@ int cmd_validate(const std::vector<fs::path>& paths, const fs::path& out, bool q
         tol = t.str();
       } else {
         const std::string ref = c["reference"].get<std::string>();
-        tol = ref == "max" ? "≤ expected" : ref == "min" ? "≥ expected" : ref == "range" ? "≤ " + c["upper"].dump() : "equal";
+        tol = ref == "max"     ? "≤ expected"
+              : ref == "min"   ? "≥ expected"
+              : ref == "range" ? "≤ " + c["upper"].dump()
+                               : "equal";
       }
       std::ostringstream err;
-      if (c.contains("rel_error") && c["rel_error"].is_number()) err.precision(3), err << c["rel_error"].get<double>();
-      md << "| " << j["case"].get<std::string>() << " | " << c["quantity"].get<std::string>() << " | "
-         << c["reference"].get<std::string>() << " | " << c["expected"].dump() << " | " << c["got"].dump()
-         << " | " << err.str() << " | " << tol << " | " << (c["passed"].get<bool>() ? "yes" : "**NO**")
-         << " |\n";
+      if (c.contains("rel_error") && c["rel_error"].is_number())
+        err.precision(3), err << c["rel_error"].get<double>();
+      md << "| " << j["case"].get<std::string>() << " | " << c["quantity"].get<std::string>()
+         << " | " << c["reference"].get<std::string>() << " | " << c["expected"].dump() << " | "
+         << c["got"].dump() << " | " << err.str() << " | " << tol << " | "
+         << (c["passed"].get<bool>() ? "yes" : "**NO**") << " |\n";
     }
   }
   std::ofstream(out / "results.csv") << csv.str();
@@ -131,8 +137,9 @@ void add_validate_command(CLI::App& app, Action& action) {
   };
   auto args = std::make_shared<Args>();
   auto* validate = app.add_subcommand(
-      "validate", "Run validation cases (files or folders of case JSON) and check them: writes "
-                  "DIR/report.md, DIR/results.csv, DIR/validation.json, DIR/cases/NAME/");
+      "validate",
+      "Run validation cases (files or folders of case JSON) and check them: writes "
+      "DIR/report.md, DIR/results.csv, DIR/validation.json, DIR/cases/NAME/");
   validate->add_option("cases", args->cases, "Case files or folders")->required();
   validate->add_option("--out", args->out, "Output folder")->required();
   validate->add_flag("-q,--quiet", args->quiet, "Only errors on stderr");

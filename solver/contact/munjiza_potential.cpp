@@ -161,8 +161,8 @@ double one_way(const TetNodes& c, const BaryMap& cm, const TetNodes& t, const Ba
                            sp * (v0.aux[k] + v1.aux[k] + v2.aux[k]));
         }
         for (int k = 0; k < 4; ++k) {
-          phi_l[k] += w * (p0 * v0.l[k] + p1 * v1.l[k] + p2 * v2.l[k] +
-                           sp * (v0.l[k] + v1.l[k] + v2.l[k]));
+          phi_l[k] +=
+              w * (p0 * v0.l[k] + p1 * v1.l[k] + p2 * v2.l[k] + sp * (v0.l[k] + v1.l[k] + v2.l[k]));
         }
         phi_x += w * (p0 * v0.x + p1 * v1.x + p2 * v2.x + sp * (v0.x + v1.x + v2.x));
       }
@@ -234,8 +234,10 @@ PotentialPairForce munjiza_potential(const TetNodes& a, const TetNodes& b, doubl
   const BaryMap am = bary_map(a), bm = bary_map(b);
   Vec3 phi_x = Vec3::Zero();
   double phi_w = 0;
-  out.energy = one_way(a, am, b, bm, penalty, with_energy, out.on_a, out.on_b, out.depth, phi_x, phi_w);
-  out.energy += one_way(b, bm, a, am, penalty, with_energy, out.on_b, out.on_a, out.depth, phi_x, phi_w);
+  out.energy =
+      one_way(a, am, b, bm, penalty, with_energy, out.on_a, out.on_b, out.depth, phi_x, phi_w);
+  out.energy +=
+      one_way(b, bm, a, am, penalty, with_energy, out.on_b, out.on_a, out.depth, phi_x, phi_w);
   if (phi_w > 0) {
     out.weight = phi_w;
     out.point = phi_x / phi_w;

@@ -11,7 +11,9 @@
 namespace asperity::contact {
 namespace {
 
-double exponent(NormalLaw law) { return law == NormalLaw::linear ? 1.0 : 1.5; }
+double exponent(NormalLaw law) {
+  return law == NormalLaw::linear ? 1.0 : 1.5;
+}
 
 // x'' = −max(0, x^n + ζ x^{(n-1)/2} x') for x > 0 (n is 1 or 3/2: square roots, no pow).
 double accel(double x, double v, double n, double zeta) {

@@ -15,7 +15,9 @@ struct Material {
   double restitution = 1;  // normal coefficient of restitution, (0, 1]
 };
 
-inline double shear_modulus(const Material& m) { return m.young / (2.0 * (1.0 + m.poisson)); }
+inline double shear_modulus(const Material& m) {
+  return m.young / (2.0 * (1.0 + m.poisson));
+}
 
 // Hertz effective modulus, 1/E* = (1-ν₁²)/E₁ + (1-ν₂²)/E₂ (Johnson 1985, eq. 4.22).
 inline double effective_young(const Material& a, const Material& b) {

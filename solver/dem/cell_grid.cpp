@@ -6,7 +6,8 @@
 
 namespace asperity::dem {
 
-std::vector<PairContact> neighbour_pairs(const Eigen::Matrix3Xd& x, const std::vector<double>& radius,
+std::vector<PairContact> neighbour_pairs(const Eigen::Matrix3Xd& x,
+                                         const std::vector<double>& radius,
                                          const std::vector<std::uint8_t>& fixed, double skin) {
   const int n = static_cast<int>(radius.size());
   std::vector<PairContact> pairs;
@@ -56,14 +57,16 @@ std::vector<PairContact> neighbour_pairs(const Eigen::Matrix3Xd& x, const std::v
             const int j = order[s];
             if (j <= i || (fixed[i] && fixed[j])) continue;
             const double reach = radius[i] + radius[j] + skin;
-            if ((x.col(i) - x.col(j)).squaredNorm() < reach * reach) pairs.push_back({.i = i, .j = j});
+            if ((x.col(i) - x.col(j)).squaredNorm() < reach * reach)
+              pairs.push_back({.i = i, .j = j});
           }
         }
       }
     }
   }
-  std::sort(pairs.begin(), pairs.end(),
-            [](const PairContact& a, const PairContact& b) { return a.i != b.i ? a.i < b.i : a.j < b.j; });
+  std::sort(pairs.begin(), pairs.end(), [](const PairContact& a, const PairContact& b) {
+    return a.i != b.i ? a.i < b.i : a.j < b.j;
+  });
   return pairs;
 }
 

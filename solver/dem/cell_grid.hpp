@@ -12,7 +12,8 @@ namespace asperity::dem {
 
 // Every pair (i < j) whose gap is below `skin`, except fixed–fixed pairs, sorted by (i, j).
 // Cost O(N) for a packing: cells of edge 2 r_max + skin, each sphere against 27 cells.
-std::vector<PairContact> neighbour_pairs(const Eigen::Matrix3Xd& x, const std::vector<double>& radius,
+std::vector<PairContact> neighbour_pairs(const Eigen::Matrix3Xd& x,
+                                         const std::vector<double>& radius,
                                          const std::vector<std::uint8_t>& fixed, double skin);
 
 }  // namespace asperity::dem

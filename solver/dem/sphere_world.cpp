@@ -40,8 +40,10 @@ ContactOutcome contact_force(const SphereWorld& world, const ContactGeometry& g,
   contact::NormalForce fn;
   double kt = 0, ct = 0;
   if (world.law.normal == contact::NormalLaw::hertz) {
-    const contact::HertzParams p{.young_eff = pc.young_eff, .radius_eff = g.radius_eff,
-                                 .mass_eff = g.mass_eff, .zeta = pc.zeta};
+    const contact::HertzParams p{.young_eff = pc.young_eff,
+                                 .radius_eff = g.radius_eff,
+                                 .mass_eff = g.mass_eff,
+                                 .zeta = pc.zeta};
     fn = contact::hertz_normal(g.overlap, rate_end, p);
     // Mindlin no-slip stiffness k_t = 8 G* a (Mindlin 1949); damping of the same Tsuji form.
     kt = 8.0 * pc.shear_eff * std::sqrt(g.radius_eff * g.overlap);
@@ -148,7 +150,8 @@ void compute_forces(SphereWorld& w, double dt) {
       continue;
     }
     const Vec3 n = d / dist;
-    w.max_overlap_ratio = std::max(w.max_overlap_ratio, overlap / std::min(w.radius[i], w.radius[j]));
+    w.max_overlap_ratio =
+        std::max(w.max_overlap_ratio, overlap / std::min(w.radius[i], w.radius[j]));
     const double mi = w.fixed[i] ? 0 : w.mass[i], mj = w.fixed[j] ? 0 : w.mass[j];
     ContactGeometry g{.normal = n,
                       .overlap = overlap,
@@ -156,8 +159,8 @@ void compute_forces(SphereWorld& w, double dt) {
                       .arm2 = (w.radius[j] - 0.5 * overlap) * n,
                       .radius_eff = w.radius[i] * w.radius[j] / (w.radius[i] + w.radius[j]),
                       .mass_eff = mi == 0 ? mj : (mj == 0 ? mi : mi * mj / (mi + mj))};
-    const Vec3 v_rel = (w.v.col(i) + w.w.col(i).cross(g.arm1)) -
-                       (w.v.col(j) + w.w.col(j).cross(g.arm2));
+    const Vec3 v_rel =
+        (w.v.col(i) + w.w.col(i).cross(g.arm1)) - (w.v.col(j) + w.w.col(j).cross(g.arm2));
     const double rate_end = -(w.v_end.col(i) - w.v_end.col(j)).dot(n);
     const ContactOutcome c = contact_force(w, g, w.pair[w.material[i] * nm + w.material[j]], v_rel,
                                            rate_end, p.spring, p.viscous, dt);
@@ -197,7 +200,10 @@ void compute_forces(SphereWorld& w, double dt) {
           Eigen::Index kl, kh;
           const double dl = lo.minCoeff(&kl), dh = hi.minCoeff(&kh);
           normal = Vec3::Zero();
-          if (dl < dh) normal[kl] = -1; else normal[kh] = 1;
+          if (dl < dh)
+            normal[kl] = -1;
+          else
+            normal[kh] = 1;
           overlap = w.radius[i] + std::min(dl, dh);
         }
       }
@@ -220,8 +226,8 @@ void compute_forces(SphereWorld& w, double dt) {
                         .mass_eff = w.mass[i]};
       const Vec3 v_rel = w.v.col(i) + w.w.col(i).cross(g.arm1);
       const double rate_end = -w.v_end.col(i).dot(normal);
-      const ContactOutcome c = contact_force(w, g, w.pair[w.material[i] * nm + wall.material], v_rel,
-                                             rate_end, h.spring, h.viscous, dt);
+      const ContactOutcome c = contact_force(w, g, w.pair[w.material[i] * nm + wall.material],
+                                             v_rel, rate_end, h.spring, h.viscous, dt);
       w.force.col(i) += c.force;
       w.torque.col(i) += g.arm1.cross(c.force);
       w.contact_energy += c.energy;
@@ -274,7 +280,8 @@ void step(SphereWorld& world, double dt) {
     world.x.col(i) += dt * world.v.col(i);
     const Vec3 spin = world.w.col(i) * dt;
     if (const double angle = spin.norm(); angle > 0) {
-      world.orientation[i] = (Quat(Eigen::AngleAxisd(angle, spin / angle)) * world.orientation[i]).normalized();
+      world.orientation[i] =
+          (Quat(Eigen::AngleAxisd(angle, spin / angle)) * world.orientation[i]).normalized();
     }
   }
   const std::uint64_t t1 = ticks();

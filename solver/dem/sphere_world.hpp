@@ -65,9 +65,9 @@ struct PairConstants {
 
 struct SphereWorld {
   // Sphere state (columns are spheres).
-  Eigen::Matrix3Xd x, v, w;         // position m, velocity m/s, angular velocity rad/s
-  Eigen::Matrix3Xd force, torque;   // this step's totals, without gravity
-  Eigen::Matrix3Xd v_end;           // predicted end-of-step velocity the dashpots use
+  Eigen::Matrix3Xd x, v, w;        // position m, velocity m/s, angular velocity rad/s
+  Eigen::Matrix3Xd force, torque;  // this step's totals, without gravity
+  Eigen::Matrix3Xd v_end;          // predicted end-of-step velocity the dashpots use
   std::vector<Quat> orientation;
   std::vector<double> radius, mass, inertia;  // m, kg, kg·m² (2/5 m r²)
   std::vector<int> material, body;            // material index, scene body index
@@ -87,10 +87,10 @@ struct SphereWorld {
   std::vector<WallContact> wall_contacts;
 
   // Bookkeeping.
-  Eigen::Matrix3Xd x_initial;  // gravity potential is measured from here
-  double contact_energy = 0;   // J, at the current positions
-  double dissipated = 0;       // J, accumulated
-  long contact_updates = 0;    // pair evaluations with positive overlap, accumulated
+  Eigen::Matrix3Xd x_initial;    // gravity potential is measured from here
+  double contact_energy = 0;     // J, at the current positions
+  double dissipated = 0;         // J, accumulated
+  long contact_updates = 0;      // pair evaluations with positive overlap, accumulated
   double max_overlap_ratio = 0;  // largest overlap / smaller radius seen; > 1: passed through
 
   // The recorded body (scene index): total contact force on it, and the largest signed overlap

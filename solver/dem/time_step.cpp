@@ -69,7 +69,8 @@ CriticalStep critical_step(const SphereWorld& w) {
       omega = std::sqrt(w.law.kn / m_eff);
       xi = 0.5 * zeta_max;
     } else if (out.approach_speed > 0) {
-      const contact::HertzImpact h = contact::hertz_impact(m_eff, r_max, young_max, out.approach_speed);
+      const contact::HertzImpact h =
+          contact::hertz_impact(m_eff, r_max, young_max, out.approach_speed);
       out.hertz_contact_time = h.contact_duration;
       const double k_max = 2.0 * young_max * std::sqrt(r_max * h.max_overlap);
       omega = std::sqrt(k_max / m_eff);

@@ -37,7 +37,8 @@ std::vector<TetPair> candidate_pairs(const Eigen::Matrix3Xd& x, const Eigen::Mat
       if (lo(axis, j) > hi(axis, i)) break;
       if (tet_body[i] == tet_body[j]) continue;
       if (body_fixed[tet_body[i]] && body_fixed[tet_body[j]]) continue;
-      if ((lo.col(i).array() > hi.col(j).array()).any() || (lo.col(j).array() > hi.col(i).array()).any()) {
+      if ((lo.col(i).array() > hi.col(j).array()).any() ||
+          (lo.col(j).array() > hi.col(i).array()).any()) {
         continue;
       }
       out.push_back({.a = std::min(i, j), .b = std::max(i, j)});

@@ -114,7 +114,8 @@ void contact_forces(World& w, double dt) {
       continue;
     }
     ++w.contact_evaluations;
-    const contact::PotentialPairForce c = contact::munjiza_potential(a, b, w.penalty, w.want_energy);
+    const contact::PotentialPairForce c =
+        contact::munjiza_potential(a, b, w.penalty, w.want_energy);
     if (!c.touching()) {
       p.spring.setZero();
       continue;
@@ -129,7 +130,8 @@ void contact_forces(World& w, double dt) {
     // velocity of the two elements there; distributed by each element's barycentric coordinates.
     if (w.friction > 0 && fn_mag > 0 && c.depth > 0) {
       const Vec3 n = fn / fn_mag;
-      const Eigen::Vector4d la = contact::barycentric(a, c.point), lb = contact::barycentric(b, c.point);
+      const Eigen::Vector4d la = contact::barycentric(a, c.point),
+                            lb = contact::barycentric(b, c.point);
       Vec3 va = Vec3::Zero(), vb = Vec3::Zero();
       for (int i = 0; i < 4; ++i) {
         va += la[i] * w.v.col(w.surface_tets(i, p.a));
@@ -272,7 +274,10 @@ World make_world(const WorldDef& def) {
         d.mesh.surface.minCoeff() < 0 || d.mesh.surface.maxCoeff() >= nn) {
       throw InputError(what + ": mesh refers to a node that does not exist");
     }
-    Body body{.name = d.name, .kind = d.kind, .node_begin = offset, .node_end = offset + nn,
+    Body body{.name = d.name,
+              .kind = d.kind,
+              .node_begin = offset,
+              .node_end = offset + nn,
               .young = d.material.young};
     // The penalty scales with the bodies that deform or move; a fixed block only supplies the
     // target (a stiff steel block must not shrink the step of a softer rock particle).
@@ -313,7 +318,8 @@ World make_world(const WorldDef& def) {
     }
     // Surface-adjacent tetrahedra: those with a node on the surface.
     std::vector<std::uint8_t> on_surface(nn, 0);
-    for (Eigen::Index k = 0; k < d.mesh.surface.size(); ++k) on_surface[d.mesh.surface.data()[k]] = 1;
+    for (Eigen::Index k = 0; k < d.mesh.surface.size(); ++k)
+      on_surface[d.mesh.surface.data()[k]] = 1;
     std::map<std::array<int, 3>, int> face_tet;
     for (Eigen::Index k = 0; k < d.mesh.tets.cols(); ++k) {
       const auto t = d.mesh.tets.col(k);
@@ -338,7 +344,8 @@ World make_world(const WorldDef& def) {
         throw InputError(what + ": surface triangle " + std::to_string(k) +
                          " is not a face of any tetrahedron");
       }
-      const Vec3 a = d.mesh.nodes.col(d.mesh.surface(0, k)), b = d.mesh.nodes.col(d.mesh.surface(1, k)),
+      const Vec3 a = d.mesh.nodes.col(d.mesh.surface(0, k)),
+                 b = d.mesh.nodes.col(d.mesh.surface(1, k)),
                  c = d.mesh.nodes.col(d.mesh.surface(2, k));
       const double area = 0.5 * (b - a).cross(c - a).norm();
       const auto t = d.mesh.tets.col(it->second);

@@ -114,10 +114,10 @@ struct World {
   long rebuilds = 0;
 
   // Bookkeeping.
-  bool want_energy = true;    // compute elastic and contact energy in the next step
-  double elastic_energy = 0;  // J, at the last step that computed it
-  double contact_energy = 0;  // J, penalty + friction springs
-  double dissipated = 0;      // J, accumulated: viscous damping and friction
+  bool want_energy = true;       // compute elastic and contact energy in the next step
+  double elastic_energy = 0;     // J, at the last step that computed it
+  double contact_energy = 0;     // J, penalty + friction springs
+  double dissipated = 0;         // J, accumulated: viscous damping and friction
   long contact_evaluations = 0;  // candidate pairs run through the kernel, accumulated
   long contacts_touching = 0;    // of those, in contact
 

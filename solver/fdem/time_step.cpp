@@ -37,7 +37,8 @@ CriticalStep critical_step(const World& w) {
   // subspace of the nodes' motion, so the nodal bound holds too but is far more conservative).
   for (const RigidBody& rb : w.rigid) {
     const Body& b = w.bodies[rb.body];
-    Eigen::Matrix<double, 6, 6> k = Eigen::Matrix<double, 6, 6>::Zero(), m = Eigen::Matrix<double, 6, 6>::Zero();
+    Eigen::Matrix<double, 6, 6> k = Eigen::Matrix<double, 6, 6>::Zero(),
+                                m = Eigen::Matrix<double, 6, 6>::Zero();
     for (int i = b.node_begin; i < b.node_end; ++i) {
       Eigen::Matrix<double, 3, 6> g;
       const Vec3 r = w.x.col(i) - rb.centre;
@@ -49,7 +50,8 @@ CriticalStep critical_step(const World& w) {
     const Mat3 rot = rb.orientation.toRotationMatrix();
     m.topLeftCorner<3, 3>() = rb.mass * Mat3::Identity();
     m.bottomRightCorner<3, 3>() = rot * rb.inertia_body * rot.transpose();
-    const Eigen::GeneralizedSelfAdjointEigenSolver<Eigen::Matrix<double, 6, 6>> es(k, m, Eigen::EigenvaluesOnly);
+    const Eigen::GeneralizedSelfAdjointEigenSolver<Eigen::Matrix<double, 6, 6>> es(
+        k, m, Eigen::EigenvaluesOnly);
     omega_c2 = std::max(omega_c2, es.eigenvalues().maxCoeff());
   }
   const double omega_c = std::sqrt(omega_c2);

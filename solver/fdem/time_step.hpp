@@ -11,7 +11,7 @@ struct CriticalStep {
   double element = 0;   // s, 2/ω_e (damped) of the stiffest element (fem::element_critical_step)
   double contact = 0;   // s, 2/ω_c of the stiffest penalty contact
   double critical = 0;  // s, 2/√(ω_e² + ω_c²), with the damping correction of the element part
-  std::string limited_by;  // "element" or "contact"
+  std::string limited_by;    // "element" or "contact"
   std::string element_body;  // the body of the stiffest element
 };
 

@@ -72,9 +72,12 @@ inline double neo_hookean_tet_forces(const double* dm_inv, double volume, Lame l
   const double F21 = d20 * b[3] + d21 * b[4] + d22 * b[5];
   const double F22 = d20 * b[6] + d21 * b[7] + d22 * b[8];
   // cof F (= J F⁻ᵀ).
-  const double C00 = F11 * F22 - F12 * F21, C01 = F12 * F20 - F10 * F22, C02 = F10 * F21 - F11 * F20;
-  const double C10 = F02 * F21 - F01 * F22, C11 = F00 * F22 - F02 * F20, C12 = F01 * F20 - F00 * F21;
-  const double C20 = F01 * F12 - F02 * F11, C21 = F02 * F10 - F00 * F12, C22 = F00 * F11 - F01 * F10;
+  const double C00 = F11 * F22 - F12 * F21, C01 = F12 * F20 - F10 * F22,
+               C02 = F10 * F21 - F11 * F20;
+  const double C10 = F02 * F21 - F01 * F22, C11 = F00 * F22 - F02 * F20,
+               C12 = F01 * F20 - F00 * F21;
+  const double C20 = F01 * F12 - F02 * F11, C21 = F02 * F10 - F00 * F12,
+               C22 = F00 * F11 - F01 * F10;
   const double J = F00 * C00 + F01 * C01 + F02 * C02;
   if (!(J > 0)) return J;
   const double lnJ = std::log(J);

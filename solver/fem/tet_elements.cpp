@@ -10,8 +10,8 @@
 
 namespace asperity::fem {
 
-TetElements make_tet_elements(const Eigen::Matrix3Xd& x, const Eigen::Matrix4Xi& tets,
-                              double young, double poisson, double density, double damping,
+TetElements make_tet_elements(const Eigen::Matrix3Xd& x, const Eigen::Matrix4Xi& tets, double young,
+                              double poisson, double density, double damping,
                               const std::string& what) {
   TetElements e;
   e.tets = tets;
@@ -22,8 +22,8 @@ TetElements make_tet_elements(const Eigen::Matrix3Xd& x, const Eigen::Matrix4Xi&
   e.dm_inv.resize(9 * static_cast<std::size_t>(n));
   e.volume.resize(n);
   for (int k = 0; k < n; ++k) {
-    const TetReference r = tet_reference(x.col(tets(0, k)), x.col(tets(1, k)), x.col(tets(2, k)),
-                                         x.col(tets(3, k)));
+    const TetReference r =
+        tet_reference(x.col(tets(0, k)), x.col(tets(1, k)), x.col(tets(2, k)), x.col(tets(3, k)));
     if (!(r.volume > 0)) {
       std::ostringstream s;
       s << what << ": element " << k << " has non-positive volume " << r.volume
@@ -45,8 +45,8 @@ void add_lumped_mass(const TetElements& e, std::vector<double>& mass) {
 namespace {
 
 // Kelvin–Voigt viscous forces of one element (see TetElements::damping); returns their power.
-double add_viscous_forces(const double* b, double volume, Lame lame, double beta, const double* x[4],
-                          const double* v[4], double* f[4]) {
+double add_viscous_forces(const double* b, double volume, Lame lame, double beta,
+                          const double* x[4], const double* v[4], double* f[4]) {
   Mat3 ds, dv;
   for (int c = 0; c < 3; ++c) {
     for (int r = 0; r < 3; ++r) {
@@ -84,11 +84,11 @@ InternalForceResult loop(const TetElements& e, const Eigen::Matrix3Xd& x, const 
   const int n = e.size();
   double energy = 0;
   for (int k = 0; k < n; ++k) {
-    const int i0 = 3 * t[4 * k], i1 = 3 * t[4 * k + 1], i2 = 3 * t[4 * k + 2], i3 = 3 * t[4 * k + 3];
-    const double J = neo_hookean_tet_forces<kEnergy>(&e.dm_inv[9 * static_cast<std::size_t>(k)],
-                                                     e.volume[k], e.lame, xs + i0, xs + i1, xs + i2,
-                                                     xs + i3, fs + i0, fs + i1, fs + i2, fs + i3,
-                                                     &energy);
+    const int i0 = 3 * t[4 * k], i1 = 3 * t[4 * k + 1], i2 = 3 * t[4 * k + 2],
+              i3 = 3 * t[4 * k + 3];
+    const double J = neo_hookean_tet_forces<kEnergy>(
+        &e.dm_inv[9 * static_cast<std::size_t>(k)], e.volume[k], e.lame, xs + i0, xs + i1, xs + i2,
+        xs + i3, fs + i0, fs + i1, fs + i2, fs + i3, &energy);
     if (!(J > 0) && out.inverted < 0) {
       out.inverted = k;
       out.inverted_j = J;

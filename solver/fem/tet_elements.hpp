@@ -13,11 +13,11 @@ namespace asperity::fem {
 
 // Elements of one body (one material). Node indices are global (into the world's node arrays).
 struct TetElements {
-  Eigen::Matrix4Xi tets;        // node indices, positive reference volume
-  std::vector<double> dm_inv;   // 9 per element, Dm⁻¹ column-major
-  std::vector<double> volume;   // m³, V₀
+  Eigen::Matrix4Xi tets;       // node indices, positive reference volume
+  std::vector<double> dm_inv;  // 9 per element, Dm⁻¹ column-major
+  std::vector<double> volume;  // m³, V₀
   Lame lame;
-  double density = 0;           // kg/m³
+  double density = 0;  // kg/m³
   // Kelvin–Voigt viscosity as a fraction of the elastic moduli, s (0: off, the default):
   // σ_v = β (λ tr D I + 2 μ D), D = sym(Ḟ F⁻¹), the rate of deformation — objective, so a
   // rigid rotation dissipates nothing. Modal damping ratio ξ = β ω / 2 (stiffness-proportional
@@ -29,8 +29,8 @@ struct TetElements {
 
 // Builds the reference data from reference node positions `x` (global indexing). Throws
 // InputError naming `what` and the element when an element has non-positive volume.
-TetElements make_tet_elements(const Eigen::Matrix3Xd& x, const Eigen::Matrix4Xi& tets,
-                              double young, double poisson, double density, double damping,
+TetElements make_tet_elements(const Eigen::Matrix3Xd& x, const Eigen::Matrix4Xi& tets, double young,
+                              double poisson, double density, double damping,
                               const std::string& what);
 
 // Adds ρ V₀ / 4 to each element node's mass (row-sum lumping, exact for the linear tet's
@@ -38,10 +38,10 @@ TetElements make_tet_elements(const Eigen::Matrix3Xd& x, const Eigen::Matrix4Xi&
 void add_lumped_mass(const TetElements& e, std::vector<double>& mass);
 
 struct InternalForceResult {
-  double energy = 0;           // Σ V₀ Ψ, J (only when asked)
-  double damping_power = 0;    // Σ of the viscous forces' power, W (≤ 0)
-  int inverted = -1;           // first element with J ≤ 0, or -1
-  double inverted_j = 0;       // its J
+  double energy = 0;         // Σ V₀ Ψ, J (only when asked)
+  double damping_power = 0;  // Σ of the viscous forces' power, W (≤ 0)
+  int inverted = -1;         // first element with J ≤ 0, or -1
+  double inverted_j = 0;     // its J
 };
 
 // f += internal (elastic, and viscous when damping > 0 using velocities v) nodal forces.

@@ -17,7 +17,9 @@ using Kernel = CGAL::Exact_predicates_inexact_constructions_kernel;
 using Point = Kernel::Point_3;
 using Mesh = CGAL::Surface_mesh<Point>;
 
-inline Point to_point(const Eigen::Vector3d& x) { return {x.x(), x.y(), x.z()}; }
+inline Point to_point(const Eigen::Vector3d& x) {
+  return {x.x(), x.y(), x.z()};
+}
 
 inline Mesh to_cgal(const SurfaceMesh& m) {
   std::vector<Point> pts;
@@ -26,7 +28,8 @@ inline Mesh to_cgal(const SurfaceMesh& m) {
   std::vector<std::array<std::size_t, 3>> tris;
   tris.reserve(static_cast<std::size_t>(m.faces.cols()));
   for (Eigen::Index i = 0; i < m.faces.cols(); ++i)
-    tris.push_back({static_cast<std::size_t>(m.faces(0, i)), static_cast<std::size_t>(m.faces(1, i)),
+    tris.push_back({static_cast<std::size_t>(m.faces(0, i)),
+                    static_cast<std::size_t>(m.faces(1, i)),
                     static_cast<std::size_t>(m.faces(2, i))});
   Mesh out;
   CGAL::Polygon_mesh_processing::polygon_soup_to_polygon_mesh(pts, tris, out);
@@ -48,7 +51,8 @@ inline SurfaceMesh from_cgal(const Mesh& m) {
   int k = 0;
   for (auto face : m.faces()) {
     int c = 0;
-    for (auto v : CGAL::vertices_around_face(m.halfedge(face), m)) out.faces(c++, k) = index[v.idx()];
+    for (auto v : CGAL::vertices_around_face(m.halfedge(face), m))
+      out.faces(c++, k) = index[v.idx()];
     ++k;
   }
   return out;

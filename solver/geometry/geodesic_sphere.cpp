@@ -50,7 +50,8 @@ SurfaceMesh geodesic_sphere(int n) {
   icosahedron(ico, ico_faces);
   std::map<std::array<int, 6>, int> index;
   auto vertex = [&](const std::array<int, 3>& corner, int wa, int wb, int wc) {
-    std::array<std::pair<int, int>, 3> w{{{wa ? corner[0] : -1, wa}, {wb ? corner[1] : -1, wb}, {wc ? corner[2] : -1, wc}}};
+    std::array<std::pair<int, int>, 3> w{
+        {{wa ? corner[0] : -1, wa}, {wb ? corner[1] : -1, wb}, {wc ? corner[2] : -1, wc}}};
     std::sort(w.begin(), w.end());  // the same order, hence the same sum, from every face
     std::array<int, 6> key{};
     for (int k = 0; k < 3; ++k) {

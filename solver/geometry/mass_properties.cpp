@@ -25,7 +25,8 @@ MassProperties mass_properties(const SurfaceMesh& mesh) {
     const Vec3 s = a + b + c;                  // the fourth vertex o is the zero vector
     volume += v;
     first += v / 4.0 * s;
-    second += v / 20.0 * (a * a.transpose() + b * b.transpose() + c * c.transpose() + s * s.transpose());
+    second +=
+        v / 20.0 * (a * a.transpose() + b * b.transpose() + c * c.transpose() + s * s.transpose());
   }
   MassProperties m;
   m.volume = volume;

@@ -8,20 +8,20 @@
 namespace asperity::geometry {
 
 struct MassProperties {
-  double volume = 0;    // m³
-  Vec3 centroid;        // m
-  Mat3 covariance;      // ∫ (x−c)(x−c)ᵀ dV, m⁵
-  Mat3 inertia;         // ∫ (|x−c|² 1 − (x−c)(x−c)ᵀ) dV about the centroid, m⁵ (× density = kg m²)
+  double volume = 0;  // m³
+  Vec3 centroid;      // m
+  Mat3 covariance;    // ∫ (x−c)(x−c)ᵀ dV, m⁵
+  Mat3 inertia;  // ∫ (|x−c|² 1 − (x−c)(x−c)ᵀ) dV about the centroid, m⁵ (× density = kg m²)
   Vec3 principal_moments;  // eigenvalues of `inertia`, ascending, m⁵
   Mat3 principal_axes;     // unit columns matching principal_moments, right-handed
   // Semi-axes a ≥ b ≥ c of the inertia-equivalent solid ellipsoid (same second moments about the
   // centroid): a_k = √(5 λ_k / V), λ_k the covariance eigenvalues; a lies along column 0 of
   // principal_axes (the smallest moment), c along column 2. m.
   Vec3 ellipsoid_semi_axes;
-  Vec3 extents;             // bounding-box lengths L ≥ I ≥ S in the principal frame, m
+  Vec3 extents;                  // bounding-box lengths L ≥ I ≥ S in the principal frame, m
   double equivalent_radius = 0;  // (3V / 4π)^{1/3}, m
-  double elongation = 0;    // b / a of the inertia-equivalent ellipsoid, in (0, 1]
-  double flatness = 0;      // c / b of the inertia-equivalent ellipsoid, in (0, 1]
+  double elongation = 0;         // b / a of the inertia-equivalent ellipsoid, in (0, 1]
+  double flatness = 0;           // c / b of the inertia-equivalent ellipsoid, in (0, 1]
 };
 
 // Volume, centroid and second moments as the sum over the tetrahedra (o, p0, p1, p2) that each

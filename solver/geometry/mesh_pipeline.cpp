@@ -15,7 +15,9 @@ double seconds_since(std::chrono::steady_clock::time_point t0) {
   return std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
 }
 
-nlohmann::json vec(const Vec3& v) { return {v(0), v(1), v(2)}; }
+nlohmann::json vec(const Vec3& v) {
+  return {v(0), v(1), v(2)};
+}
 nlohmann::json mat(const Mat3& m) {
   return {{m(0, 0), m(0, 1), m(0, 2)}, {m(1, 0), m(1, 1), m(1, 2)}, {m(2, 0), m(2, 1), m(2, 2)}};
 }
@@ -32,10 +34,11 @@ PreparedParticle finish(PreparedParticle p, const PipelineOptions& options) {
   p.seconds_simplify = seconds_since(t0);
   p.check = check_mesh(p.surface, true);
   if (!p.check.valid()) {
-    throw std::runtime_error(p.source_name + ": the surface simplified to " + std::to_string(faces) +
-                             " triangles is not a valid solid (" + std::to_string(p.check.self_intersections) +
-                             " self-intersecting face pairs, " + std::to_string(p.check.nonmanifold_vertices) +
-                             " non-manifold vertices); try another face count");
+    throw std::runtime_error(
+        p.source_name + ": the surface simplified to " + std::to_string(faces) +
+        " triangles is not a valid solid (" + std::to_string(p.check.self_intersections) +
+        " self-intersecting face pairs, " + std::to_string(p.check.nonmanifold_vertices) +
+        " non-manifold vertices); try another face count");
   }
   p.props = mass_properties(p.surface);
   p.change = shape_change(p.source, p.source_props, p.surface, p.props);
@@ -50,7 +53,8 @@ PreparedParticle finish(PreparedParticle p, const PipelineOptions& options) {
 
 }  // namespace
 
-PreparedParticle prepare_particle(const std::filesystem::path& file, const PipelineOptions& options) {
+PreparedParticle prepare_particle(const std::filesystem::path& file,
+                                  const PipelineOptions& options) {
   const auto t0 = std::chrono::steady_clock::now();
   PreparedParticle p;
   p.source_name = file.string();
@@ -59,7 +63,8 @@ PreparedParticle prepare_particle(const std::filesystem::path& file, const Pipel
   return finish(std::move(p), options);
 }
 
-PreparedParticle prepare_particle(const SurfaceMesh& source, const std::string& name, const PipelineOptions& options) {
+PreparedParticle prepare_particle(const SurfaceMesh& source, const std::string& name,
+                                  const PipelineOptions& options) {
   const auto t0 = std::chrono::steady_clock::now();
   PreparedParticle p;
   p.source_name = name;
@@ -123,10 +128,13 @@ nlohmann::json mesh_report(const PreparedParticle& p) {
                  {"flatness", p.source_props.flatness},
                  {"max_asperity_rel", p.change.max_asperity_rel_source}};
   j["method"] = {
-      {"simplification", "CGAL edge collapse, Lindstrom-Turk cost and placement, bounded normal change filter"},
-      {"tetrahedralization", "TetGen 1.5 constrained Delaunay, switches pYzQ (+q), surface triangles kept"},
-      {"asperity", "max over vertices of the radial height above the inertia-equivalent ellipsoid, over the "
-                   "equivalent-sphere radius (docs/geometry.md)"},
+      {"simplification",
+       "CGAL edge collapse, Lindstrom-Turk cost and placement, bounded normal change filter"},
+      {"tetrahedralization",
+       "TetGen 1.5 constrained Delaunay, switches pYzQ (+q), surface triangles kept"},
+      {"asperity",
+       "max over vertices of the radial height above the inertia-equivalent ellipsoid, over the "
+       "equivalent-sphere radius (docs/geometry.md)"},
       {"elongation_flatness", "b/a and c/b of the inertia-equivalent ellipsoid"}};
   j["seconds"] = {{"read_and_check", p.seconds_read},
                   {"simplify", p.seconds_simplify},

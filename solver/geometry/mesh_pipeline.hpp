@@ -26,24 +26,26 @@ struct PipelineOptions {
 };
 
 struct PreparedParticle {
-  std::string source_name;     // file or generator description
-  SurfaceMesh source;          // after repair
+  std::string source_name;  // file or generator description
+  SurfaceMesh source;       // after repair
   MassProperties source_props;
-  MeshLog log;                 // repairs and warnings
-  SurfaceMesh surface;         // exactly `faces` triangles, closed, manifold, outward
+  MeshLog log;          // repairs and warnings
+  SurfaceMesh surface;  // exactly `faces` triangles, closed, manifold, outward
   MassProperties props;
-  MeshCheck check;             // of `surface`, with self-intersections
-  ShapeChange change;          // `surface` against `source`
-  TetMesh tets;                // empty when not asked for
+  MeshCheck check;     // of `surface`, with self-intersections
+  ShapeChange change;  // `surface` against `source`
+  TetMesh tets;        // empty when not asked for
   TetQuality quality;
   double seconds_read = 0, seconds_simplify = 0, seconds_tetrahedralize = 0;  // wall-clock
 };
 
 // From a file (read_mesh_file → repair_mesh → ...). InputError for bad input or an impossible
 // face count; std::runtime_error when a step fails on valid input.
-PreparedParticle prepare_particle(const std::filesystem::path& file, const PipelineOptions& options);
+PreparedParticle prepare_particle(const std::filesystem::path& file,
+                                  const PipelineOptions& options);
 // From a surface already in memory (e.g. random_particle), checked and repaired the same way.
-PreparedParticle prepare_particle(const SurfaceMesh& source, const std::string& name, const PipelineOptions& options);
+PreparedParticle prepare_particle(const SurfaceMesh& source, const std::string& name,
+                                  const PipelineOptions& options);
 
 // mesh.json (shared/CONTRACT.md "Outputs", docs/geometry.md): every number above, SI units.
 nlohmann::json mesh_report(const PreparedParticle& p);

@@ -39,30 +39,39 @@ struct Waves {
 }  // namespace
 
 long particle_face_count(long faces) {
-  const long n = std::max(1L, std::lround(std::sqrt(static_cast<double>(std::max(faces, 1L)) / 20.0)));
+  const long n =
+      std::max(1L, std::lround(std::sqrt(static_cast<double>(std::max(faces, 1L)) / 20.0)));
   return 20 * n * n;
 }
 
 std::string particle_def_problem(const ParticleDef& d) {
   std::ostringstream s;
-  if (!(d.size > 0) || !std::isfinite(d.size)) s << "size must be a positive length in m (got " << d.size << ")";
-  else if (!(d.elongation > 0 && d.elongation <= 1)) s << "elongation must lie in (0, 1] (got " << d.elongation << ")";
-  else if (!(d.flatness > 0 && d.flatness <= 1)) s << "flatness must lie in (0, 1] (got " << d.flatness << ")";
-  else if (!(d.angularity >= 0 && d.angularity <= 1)) s << "angularity must lie in [0, 1] (got " << d.angularity << ")";
-  else if (!(d.roughness >= 0 && d.roughness <= 1)) s << "roughness must lie in [0, 1] (got " << d.roughness << ")";
-  else if (d.faces < 20 || d.faces > 2'000'000) s << "faces must lie in [20, 2000000] (got " << d.faces << ")";
+  if (!(d.size > 0) || !std::isfinite(d.size))
+    s << "size must be a positive length in m (got " << d.size << ")";
+  else if (!(d.elongation > 0 && d.elongation <= 1))
+    s << "elongation must lie in (0, 1] (got " << d.elongation << ")";
+  else if (!(d.flatness > 0 && d.flatness <= 1))
+    s << "flatness must lie in (0, 1] (got " << d.flatness << ")";
+  else if (!(d.angularity >= 0 && d.angularity <= 1))
+    s << "angularity must lie in [0, 1] (got " << d.angularity << ")";
+  else if (!(d.roughness >= 0 && d.roughness <= 1))
+    s << "roughness must lie in [0, 1] (got " << d.roughness << ")";
+  else if (d.faces < 20 || d.faces > 2'000'000)
+    s << "faces must lie in [20, 2000000] (got " << d.faces << ")";
   return s.str();
 }
 
 SurfaceMesh random_particle(const ParticleDef& def) {
-  if (const std::string problem = particle_def_problem(def); !problem.empty()) throw InputError(problem);
+  if (const std::string problem = particle_def_problem(def); !problem.empty())
+    throw InputError(problem);
   SplitMix64 rng{def.seed};
 
   Waves form;  // 1. low-order irregularity of the overall form
   for (int k = 0; k < 6; ++k) form.add(rng, rng.uniform(1.0, 3.0), 0.08 / 3.0);
   const Vec3 axes(1.0, def.elongation, def.elongation * def.flatness);
 
-  const int cuts = def.angularity > 0 ? static_cast<int>(std::lround(4.0 + 16.0 * def.angularity)) : 0;
+  const int cuts =
+      def.angularity > 0 ? static_cast<int>(std::lround(4.0 + 16.0 * def.angularity)) : 0;
   std::vector<Vec3> normal(cuts);
   std::vector<double> depth(cuts);
   for (int k = 0; k < cuts; ++k) {
@@ -72,12 +81,15 @@ SurfaceMesh random_particle(const ParticleDef& def) {
 
   Waves rough;  // 3. multi-scale roughness
   for (int j = 0; j < 5; ++j)
-    for (int w = 0; w < 4; ++w) rough.add(rng, 4.0 * std::pow(2.0, j), 0.04 * def.roughness * std::pow(2.0, -0.8 * j) / 2.0);
+    for (int w = 0; w < 4; ++w)
+      rough.add(rng, 4.0 * std::pow(2.0, j), 0.04 * def.roughness * std::pow(2.0, -0.8 * j) / 2.0);
 
-  const int n = static_cast<int>(std::lround(std::sqrt(static_cast<double>(particle_face_count(def.faces)) / 20.0)));
+  const int n = static_cast<int>(
+      std::lround(std::sqrt(static_cast<double>(particle_face_count(def.faces)) / 20.0)));
   const SurfaceMesh sphere = geodesic_sphere(n);
   std::vector<Vec3> u(static_cast<std::size_t>(sphere.vertices.cols()));
-  for (std::size_t i = 0; i < u.size(); ++i) u[i] = sphere.vertices.col(static_cast<Eigen::Index>(i));
+  for (std::size_t i = 0; i < u.size(); ++i)
+    u[i] = sphere.vertices.col(static_cast<Eigen::Index>(i));
 
   std::vector<Vec3> x(u.size());
   for (std::size_t i = 0; i < u.size(); ++i) x[i] = axes.cwiseProduct(u[i]) * (1.0 + form(u[i]));

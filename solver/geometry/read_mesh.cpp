@@ -53,7 +53,8 @@ std::string sniff_format(const std::string& head) {
   if (h.rfind("ply", 0) == 0) return "PLY";
   if (h.rfind("solid", 0) == 0) return "ASCII STL";
   if (h.rfind("off", 0) == 0 || h.rfind("coff", 0) == 0 || h.rfind("noff", 0) == 0) return "OFF";
-  if (h.rfind("v ", 0) == 0 || h.rfind("# ", 0) == 0 || h.rfind("o ", 0) == 0 || h.rfind("mtllib", 0) == 0)
+  if (h.rfind("v ", 0) == 0 || h.rfind("# ", 0) == 0 || h.rfind("o ", 0) == 0 ||
+      h.rfind("mtllib", 0) == 0)
     return "OBJ";
   return "";
 }
@@ -117,7 +118,8 @@ PolygonSoup read_mesh_file(const fs::path& file, const ReadOptions& options) {
     fail(file, s.str());
   }
   std::error_code ec;
-  if (!fs::is_regular_file(file, ec)) fail(file, "cannot open file (missing or not a regular file)");
+  if (!fs::is_regular_file(file, ec))
+    fail(file, "cannot open file (missing or not a regular file)");
   const std::uintmax_t size = fs::file_size(file, ec);
   if (ec) fail(file, "cannot open file");
   if (size == 0) fail(file, "empty file (0 bytes)");

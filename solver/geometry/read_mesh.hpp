@@ -11,7 +11,7 @@ namespace asperity::geometry {
 
 // What a file holds before any check: points and polygons (vertex indices), as read.
 struct PolygonSoup {
-  Eigen::Matrix3Xd points;                // m (after the scale factor)
+  Eigen::Matrix3Xd points;                 // m (after the scale factor)
   std::vector<std::vector<int>> polygons;  // vertex indices, any size ≥ 3
 };
 

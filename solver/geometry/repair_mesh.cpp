@@ -52,9 +52,10 @@ struct EdgeUse {
 struct Topology {
   long border_edges = 0, nonmanifold_edges = 0, nonmanifold_vertices = 0, misoriented_edges = 0;
   long border_loops = 0;
-  std::vector<std::array<int, 3>> neighbour;  // across edge corner→corner+1; −1 if none or non-manifold
+  std::vector<std::array<int, 3>>
+      neighbour;  // across edge corner→corner+1; −1 if none or non-manifold
   std::vector<std::array<bool, 3>> same_direction;  // the neighbour runs that edge the same way
-  std::vector<int> shell;  // per face
+  std::vector<int> shell;                           // per face
   long shells = 0;
 };
 
@@ -64,7 +65,8 @@ Topology analyse(const Eigen::Matrix3Xi& f, long n_vertices) {
   uses.reserve(3 * static_cast<std::size_t>(nf));
   for (int i = 0; i < nf; ++i) {
     for (int c = 0; c < 3; ++c) {
-      const auto a = static_cast<std::uint64_t>(f(c, i)), b = static_cast<std::uint64_t>(f((c + 1) % 3, i));
+      const auto a = static_cast<std::uint64_t>(f(c, i)),
+                 b = static_cast<std::uint64_t>(f((c + 1) % 3, i));
       uses.push_back({std::min(a, b) << 32 | std::max(a, b), i, c, a < b});
     }
   }
@@ -87,7 +89,8 @@ Topology analyse(const Eigen::Matrix3Xi& f, long n_vertices) {
     std::size_t j = i;
     while (j < uses.size() && uses[j].key == uses[i].key) ++j;
     const std::size_t n = j - i;
-    const int a = static_cast<int>(uses[i].key >> 32), b = static_cast<int>(uses[i].key & 0xffffffffu);
+    const int a = static_cast<int>(uses[i].key >> 32),
+              b = static_cast<int>(uses[i].key & 0xffffffffu);
     if (n == 1) {
       ++t.border_edges;
       border_vertices.join(a, b);
@@ -132,12 +135,13 @@ Topology analyse(const Eigen::Matrix3Xi& f, long n_vertices) {
 }
 
 // Signed volume by the divergence theorem, about `origin` for round-off (m³).
-double signed_volume(const Eigen::Matrix3Xd& p, const Eigen::Matrix3Xi& f, const std::vector<int>* shell_of,
-                     int shell, const Eigen::Vector3d& origin) {
+double signed_volume(const Eigen::Matrix3Xd& p, const Eigen::Matrix3Xi& f,
+                     const std::vector<int>* shell_of, int shell, const Eigen::Vector3d& origin) {
   double six_v = 0;
   for (Eigen::Index i = 0; i < f.cols(); ++i) {
     if (shell_of && (*shell_of)[i] != shell) continue;
-    const Eigen::Vector3d a = p.col(f(0, i)) - origin, b = p.col(f(1, i)) - origin, c = p.col(f(2, i)) - origin;
+    const Eigen::Vector3d a = p.col(f(0, i)) - origin, b = p.col(f(1, i)) - origin,
+                          c = p.col(f(2, i)) - origin;
     six_v += a.dot(b.cross(c));
   }
   return six_v / 6.0;
@@ -145,7 +149,8 @@ double signed_volume(const Eigen::Matrix3Xd& p, const Eigen::Matrix3Xi& f, const
 
 bool collinear(const Eigen::Matrix3Xd& p, const Eigen::Matrix3Xi& f, Eigen::Index i) {
   return f(0, i) == f(1, i) || f(1, i) == f(2, i) || f(0, i) == f(2, i) ||
-         CGAL::collinear(to_point(p.col(f(0, i))), to_point(p.col(f(1, i))), to_point(p.col(f(2, i))));
+         CGAL::collinear(to_point(p.col(f(0, i))), to_point(p.col(f(1, i))),
+                         to_point(p.col(f(2, i))));
 }
 
 long count_self_intersections(const SurfaceMesh& m) {
@@ -157,7 +162,8 @@ long count_self_intersections(const SurfaceMesh& m) {
 }
 
 // Keeps the referenced vertices only, renumbered in first-use order.
-SurfaceMesh compact(const Eigen::Matrix3Xd& p, const std::vector<std::array<int, 3>>& tris, long* dropped) {
+SurfaceMesh compact(const Eigen::Matrix3Xd& p, const std::vector<std::array<int, 3>>& tris,
+                    long* dropped) {
   std::vector<int> index(static_cast<std::size_t>(p.cols()), -1);
   SurfaceMesh out;
   out.faces.resize(3, static_cast<Eigen::Index>(tris.size()));
@@ -191,7 +197,8 @@ MeshCheck check_mesh(const SurfaceMesh& mesh, bool self_intersections) {
   c.nonmanifold_vertices = t.nonmanifold_vertices;
   c.misoriented_edges = t.misoriented_edges;
   c.shells = t.shells;
-  for (Eigen::Index i = 0; i < mesh.faces.cols(); ++i) c.degenerate_faces += collinear(mesh.vertices, mesh.faces, i);
+  for (Eigen::Index i = 0; i < mesh.faces.cols(); ++i)
+    c.degenerate_faces += collinear(mesh.vertices, mesh.faces, i);
   const Eigen::Vector3d origin = mesh.vertices.rowwise().mean();
   c.volume = signed_volume(mesh.vertices, mesh.faces, nullptr, 0, origin);
   if (self_intersections && c.closed() && c.manifold() && c.degenerate_faces == 0) {
@@ -209,9 +216,11 @@ SurfaceMesh repair_mesh(const PolygonSoup& soup, const std::string& name, MeshLo
   long polygons = 0;
   for (const auto& poly : soup.polygons) {
     if (poly.size() > 3) ++polygons;
-    for (std::size_t k = 1; k + 1 < poly.size(); ++k) tris.push_back({poly[0], poly[k], poly[k + 1]});
+    for (std::size_t k = 1; k + 1 < poly.size(); ++k)
+      tris.push_back({poly[0], poly[k], poly[k + 1]});
   }
-  if (polygons > 0) log.repairs.push_back("fan-triangulated " + plural(polygons, "polygon", "polygons"));
+  if (polygons > 0)
+    log.repairs.push_back("fan-triangulated " + plural(polygons, "polygon", "polygons"));
 
   // 2. Merge vertices with identical coordinates (STL stores each triangle's corners apart).
   std::vector<int> order(static_cast<std::size_t>(p0.cols()));
@@ -234,7 +243,8 @@ SurfaceMesh repair_mesh(const PolygonSoup& soup, const std::string& name, MeshLo
   }
   for (auto& t : tris)
     for (int& v : t) v = same[v];
-  if (merged > 0) log.repairs.push_back("merged " + plural(merged, "duplicate vertex", "duplicate vertices"));
+  if (merged > 0)
+    log.repairs.push_back("merged " + plural(merged, "duplicate vertex", "duplicate vertices"));
 
   // 3. Faces with a repeated vertex have no area and no orientation; duplicate faces (same three
   //    vertices) are doubled copies. Both go.
@@ -269,21 +279,26 @@ SurfaceMesh repair_mesh(const PolygonSoup& soup, const std::string& name, MeshLo
       if (!drop[i]) tris.push_back(kept[i]);
   }
   if (repeated > 0)
-    log.repairs.push_back("removed " + plural(repeated, "degenerate face", "degenerate faces") + " with a repeated vertex");
-  if (duplicates > 0) log.repairs.push_back("removed " + plural(duplicates, "duplicate face", "duplicate faces"));
+    log.repairs.push_back("removed " + plural(repeated, "degenerate face", "degenerate faces") +
+                          " with a repeated vertex");
+  if (duplicates > 0)
+    log.repairs.push_back("removed " + plural(duplicates, "duplicate face", "duplicate faces"));
   if (tris.empty()) fail("no faces left after removing degenerate faces");
 
   long unreferenced = 0;
   SurfaceMesh mesh = compact(p0, tris, &unreferenced);
   if (unreferenced - merged > 0)
-    log.repairs.push_back("removed " + plural(unreferenced - merged, "unreferenced vertex", "unreferenced vertices"));
+    log.repairs.push_back(
+        "removed " + plural(unreferenced - merged, "unreferenced vertex", "unreferenced vertices"));
 
   // 4. Topology: refuse what cannot be repaired without guessing the intended surface.
   Topology t = analyse(mesh.faces, mesh.vertices.cols());
   if (t.nonmanifold_edges > 0) {
     fail("non-manifold edge: " + plural(t.nonmanifold_edges, "edge is", "edges are") +
          " shared by more than two faces" +
-         (t.border_edges > 0 ? " (and " + plural(t.border_edges, "border edge", "border edges") + ")" : ""));
+         (t.border_edges > 0
+              ? " (and " + plural(t.border_edges, "border edge", "border edges") + ")"
+              : ""));
   }
   if (t.border_edges > 0) {
     fail("open mesh: " + plural(t.border_edges, "border edge", "border edges") + " in " +
@@ -316,7 +331,9 @@ SurfaceMesh repair_mesh(const PolygonSoup& soup, const std::string& name, MeshLo
           flip[b] = want;
           queue.push_back(b);
         } else if (flip[b] != want) {
-          fail("non-orientable surface: a one-sided shell (like a Moebius strip) cannot be oriented");
+          fail(
+              "non-orientable surface: a one-sided shell (like a Moebius strip) cannot be "
+              "oriented");
         }
       }
     }
@@ -332,13 +349,15 @@ SurfaceMesh repair_mesh(const PolygonSoup& soup, const std::string& name, MeshLo
       ++flipped;
     }
   if (flipped > 0)
-    log.repairs.push_back("reoriented " + plural(flipped, "face", "faces") + " to match their neighbours");
+    log.repairs.push_back("reoriented " + plural(flipped, "face", "faces") +
+                          " to match their neighbours");
 
   // 6. One shell: drop tiny ones (debris, inner bubbles), refuse a second particle.
   const Eigen::Vector3d origin = mesh.vertices.rowwise().mean();
   std::vector<double> shell_volume(static_cast<std::size_t>(t.shells));
   std::vector<long> shell_faces(static_cast<std::size_t>(t.shells), 0);
-  for (int s = 0; s < t.shells; ++s) shell_volume[s] = signed_volume(mesh.vertices, mesh.faces, &t.shell, s, origin);
+  for (int s = 0; s < t.shells; ++s)
+    shell_volume[s] = signed_volume(mesh.vertices, mesh.faces, &t.shell, s, origin);
   for (int i = 0; i < nf; ++i) ++shell_faces[t.shell[i]];
   const int main_shell = static_cast<int>(
       std::max_element(shell_volume.begin(), shell_volume.end(),
@@ -358,7 +377,8 @@ SurfaceMesh repair_mesh(const PolygonSoup& soup, const std::string& name, MeshLo
     }
     std::vector<std::array<int, 3>> kept;
     for (int i = 0; i < nf; ++i)
-      if (t.shell[i] == main_shell) kept.push_back({mesh.faces(0, i), mesh.faces(1, i), mesh.faces(2, i)});
+      if (t.shell[i] == main_shell)
+        kept.push_back({mesh.faces(0, i), mesh.faces(1, i), mesh.faces(2, i)});
     for (int s = 0; s < t.shells; ++s) {
       if (s == main_shell) continue;
       std::ostringstream m;
@@ -372,12 +392,15 @@ SurfaceMesh repair_mesh(const PolygonSoup& soup, const std::string& name, MeshLo
   }
 
   // 7. Outward: the divergence theorem gives a negative volume for an inward-wound surface.
-  const double extent = (mesh.vertices.rowwise().maxCoeff() - mesh.vertices.rowwise().minCoeff()).maxCoeff();
-  double volume = signed_volume(mesh.vertices, mesh.faces, nullptr, 0, mesh.vertices.rowwise().mean());
+  const double extent =
+      (mesh.vertices.rowwise().maxCoeff() - mesh.vertices.rowwise().minCoeff()).maxCoeff();
+  double volume =
+      signed_volume(mesh.vertices, mesh.faces, nullptr, 0, mesh.vertices.rowwise().mean());
   // Zero volume to round-off: |V| within 1e-12 of the bounding cube (a flat or collapsed shell).
   if (!(std::abs(volume) > 1e-12 * extent * extent * extent)) {
     std::ostringstream m;
-    m << "zero volume (" << volume << " m^3 inside a " << extent << " m bounding box): a flat or collapsed surface";
+    m << "zero volume (" << volume << " m^3 inside a " << extent
+      << " m bounding box): a flat or collapsed surface";
     fail(m.str());
   }
   if (volume < 0) {
@@ -391,15 +414,16 @@ SurfaceMesh repair_mesh(const PolygonSoup& soup, const std::string& name, MeshLo
   // 8. Zero-area faces with three distinct, collinear vertices (needles and caps): CGAL collapses
   //    or flips them away, which keeps the surface closed; the result is checked again.
   long degenerate = 0;
-  for (Eigen::Index i = 0; i < mesh.faces.cols(); ++i) degenerate += collinear(mesh.vertices, mesh.faces, i);
+  for (Eigen::Index i = 0; i < mesh.faces.cols(); ++i)
+    degenerate += collinear(mesh.vertices, mesh.faces, i);
   if (degenerate > 0) {
     CgalMesh cm = to_cgal(mesh);
     const bool done = PMP::remove_degenerate_faces(cm);
     cm.collect_garbage();
     SurfaceMesh fixed = from_cgal(cm);
     const MeshCheck after = check_mesh(fixed, false);
-    if (!done || !after.closed() || !after.manifold() || after.shells != 1 || after.misoriented_edges != 0 ||
-        after.degenerate_faces != 0 || after.volume <= 0) {
+    if (!done || !after.closed() || !after.manifold() || after.shells != 1 ||
+        after.misoriented_edges != 0 || after.degenerate_faces != 0 || after.volume <= 0) {
       fail("degenerate faces: " + plural(degenerate, "face has", "faces have") +
            " zero area (collinear vertices) and could not be collapsed safely");
     }
@@ -415,7 +439,8 @@ SurfaceMesh repair_mesh(const PolygonSoup& soup, const std::string& name, MeshLo
   return mesh;
 }
 
-SurfaceMesh load_surface_mesh(const std::filesystem::path& file, const ReadOptions& options, MeshLog& log) {
+SurfaceMesh load_surface_mesh(const std::filesystem::path& file, const ReadOptions& options,
+                              MeshLog& log) {
   return repair_mesh(read_mesh_file(file, options), file.string(), log);
 }
 

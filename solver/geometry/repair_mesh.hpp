@@ -35,8 +35,8 @@ struct MeshCheck {
   // Closed, manifold, one shell, consistently and outwardly oriented, no degenerate face, no
   // self-intersection (when checked).
   bool valid() const {
-    return closed() && manifold() && shells == 1 && misoriented_edges == 0 && degenerate_faces == 0 &&
-           self_intersections <= 0 && volume > 0;
+    return closed() && manifold() && shells == 1 && misoriented_edges == 0 &&
+           degenerate_faces == 0 && self_intersections <= 0 && volume > 0;
   }
 };
 
@@ -55,6 +55,7 @@ inline constexpr double kTinyShellFraction = 1e-2;
 SurfaceMesh repair_mesh(const PolygonSoup& soup, const std::string& name, MeshLog& log);
 
 // read_mesh_file + repair_mesh.
-SurfaceMesh load_surface_mesh(const std::filesystem::path& file, const ReadOptions& options, MeshLog& log);
+SurfaceMesh load_surface_mesh(const std::filesystem::path& file, const ReadOptions& options,
+                              MeshLog& log);
 
 }  // namespace asperity::geometry

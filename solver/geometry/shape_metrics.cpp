@@ -8,7 +8,8 @@
 namespace asperity::geometry {
 
 double max_asperity_height(const SurfaceMesh& mesh, const MassProperties& props) {
-  const Vec3 inv_a2 = props.ellipsoid_semi_axes.cwiseProduct(props.ellipsoid_semi_axes).cwiseInverse();
+  const Vec3 inv_a2 =
+      props.ellipsoid_semi_axes.cwiseProduct(props.ellipsoid_semi_axes).cwiseInverse();
   double h_max = -std::numeric_limits<double>::infinity();
   for (Eigen::Index i = 0; i < mesh.vertices.cols(); ++i) {
     const Vec3 q = props.principal_axes.transpose() * (mesh.vertices.col(i) - props.centroid);
@@ -25,11 +26,12 @@ double max_asperity_rel(const SurfaceMesh& mesh, const MassProperties& props) {
   return max_asperity_height(mesh, props) / props.equivalent_radius;
 }
 
-ShapeChange shape_change(const SurfaceMesh& source, const MassProperties& source_props, const SurfaceMesh& result,
-                         const MassProperties& result_props) {
+ShapeChange shape_change(const SurfaceMesh& source, const MassProperties& source_props,
+                         const SurfaceMesh& result, const MassProperties& result_props) {
   ShapeChange s;
   s.volume_change_rel = (result_props.volume - source_props.volume) / source_props.volume;
-  s.centroid_shift_rel = (result_props.centroid - source_props.centroid).norm() / source_props.equivalent_radius;
+  s.centroid_shift_rel =
+      (result_props.centroid - source_props.centroid).norm() / source_props.equivalent_radius;
   s.max_asperity_rel_source = max_asperity_rel(source, source_props);
   s.max_asperity_rel = max_asperity_rel(result, result_props);
   s.max_asperity_change_rel = s.max_asperity_rel - s.max_asperity_rel_source;

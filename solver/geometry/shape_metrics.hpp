@@ -22,8 +22,8 @@ double max_asperity_rel(const SurfaceMesh& mesh, const MassProperties& props);
 
 // A result mesh compared with its source (each with its own mass properties).
 struct ShapeChange {
-  double volume_change_rel = 0;   // (V − V₀) / V₀
-  double centroid_shift_rel = 0;  // |c − c₀| / r_eq,₀
+  double volume_change_rel = 0;        // (V − V₀) / V₀
+  double centroid_shift_rel = 0;       // |c − c₀| / r_eq,₀
   double max_asperity_rel_source = 0;  // max_asperity_rel of the source
   double max_asperity_rel = 0;         // max_asperity_rel of the result
   double max_asperity_change_rel = 0;  // max_asperity_rel − max_asperity_rel_source
@@ -31,7 +31,7 @@ struct ShapeChange {
   double flatness_change = 0;          // flatness − flatness₀
 };
 
-ShapeChange shape_change(const SurfaceMesh& source, const MassProperties& source_props, const SurfaceMesh& result,
-                         const MassProperties& result_props);
+ShapeChange shape_change(const SurfaceMesh& source, const MassProperties& source_props,
+                         const SurfaceMesh& result, const MassProperties& result_props);
 
 }  // namespace asperity::geometry

@@ -16,14 +16,16 @@
 namespace asperity::geometry {
 
 std::string face_target_problem(long faces, long input_faces) {
-  if (faces < 4) return "faces must be at least 4, a tetrahedron (got " + std::to_string(faces) + ")";
+  if (faces < 4)
+    return "faces must be at least 4, a tetrahedron (got " + std::to_string(faces) + ")";
   if (faces % 2 != 0) {
     return "faces must be even: every closed triangle surface has an even number of triangles "
-           "(3F = 2E), and each edge collapse removes two (got " + std::to_string(faces) + ")";
+           "(3F = 2E), and each edge collapse removes two (got " +
+           std::to_string(faces) + ")";
   }
   if (faces > input_faces) {
-    return "faces " + std::to_string(faces) + " is more than the input's " + std::to_string(input_faces) +
-           " triangles; simplification only removes triangles";
+    return "faces " + std::to_string(faces) + " is more than the input's " +
+           std::to_string(input_faces) + " triangles; simplification only removes triangles";
   }
   return "";
 }
@@ -47,8 +49,9 @@ SurfaceMesh simplify_edge_collapse(const SurfaceMesh& mesh, long faces) {
   cm.collect_garbage();
   const long got = static_cast<long>(cm.number_of_faces());
   if (got != faces) {
-    throw std::runtime_error("edge collapse stopped at " + std::to_string(got) + " triangles, not the " +
-                             std::to_string(faces) + " asked for: the remaining collapses would fold faces over");
+    throw std::runtime_error("edge collapse stopped at " + std::to_string(got) +
+                             " triangles, not the " + std::to_string(faces) +
+                             " asked for: the remaining collapses would fold faces over");
   }
   return cgal::from_cgal(cm);
 }

@@ -21,13 +21,20 @@ namespace {
 
 std::string tetgen_error(int code) {
   switch (code) {
-    case 1: return "out of memory";
-    case 2: return "internal error";
-    case 3: return "the surface intersects itself";
-    case 4: return "a feature of the surface is below TetGen's tolerance (very small)";
-    case 5: return "two surface faces are too close to each other";
-    case 10: return "invalid input";
-    default: return "error code " + std::to_string(code);
+    case 1:
+      return "out of memory";
+    case 2:
+      return "internal error";
+    case 3:
+      return "the surface intersects itself";
+    case 4:
+      return "a feature of the surface is below TetGen's tolerance (very small)";
+    case 5:
+      return "two surface faces are too close to each other";
+    case 10:
+      return "invalid input";
+    default:
+      return "error code " + std::to_string(code);
   }
 }
 
@@ -62,7 +69,8 @@ TetMesh tetrahedralize(const SurfaceMesh& surface, const TetOptions& options) {
   in.firstnumber = 0;
   in.numberofpoints = n;
   in.pointlist = new REAL[3 * static_cast<std::size_t>(n)];
-  std::memcpy(in.pointlist, surface.vertices.data(), sizeof(REAL) * 3 * static_cast<std::size_t>(n));
+  std::memcpy(in.pointlist, surface.vertices.data(),
+              sizeof(REAL) * 3 * static_cast<std::size_t>(n));
   in.numberoffacets = nf;
   in.facetlist = new tetgenio::facet[static_cast<std::size_t>(nf)];
   for (int i = 0; i < nf; ++i) {
@@ -72,7 +80,8 @@ TetMesh tetrahedralize(const SurfaceMesh& surface, const TetOptions& options) {
     f.polygonlist = new tetgenio::polygon[1];
     tetgenio::init(&f.polygonlist[0]);
     f.polygonlist[0].numberofvertices = 3;
-    f.polygonlist[0].vertexlist = new int[3]{surface.faces(0, i), surface.faces(1, i), surface.faces(2, i)};
+    f.polygonlist[0].vertexlist =
+        new int[3]{surface.faces(0, i), surface.faces(1, i), surface.faces(2, i)};
   }
   std::ostringstream sw;
   sw << "pYzQ";
@@ -91,12 +100,15 @@ TetMesh tetrahedralize(const SurfaceMesh& surface, const TetOptions& options) {
   TetMesh tm;
   tm.nodes = Eigen::Map<const Eigen::Matrix3Xd>(out.pointlist, 3, out.numberofpoints);
   if (tm.nodes.leftCols(n) != surface.vertices) {
-    throw std::runtime_error("TetGen reordered or moved the surface vertices (switches " + switches + ")");
+    throw std::runtime_error("TetGen reordered or moved the surface vertices (switches " +
+                             switches + ")");
   }
   tm.tets = Eigen::Map<const Eigen::Matrix4Xi>(out.tetrahedronlist, 4, out.numberoftetrahedra);
   for (Eigen::Index t = 0; t < tm.tets.cols(); ++t) {
     const Eigen::Vector3d a = tm.nodes.col(tm.tets(0, t));
-    const double six_v = (tm.nodes.col(tm.tets(1, t)) - a).cross(tm.nodes.col(tm.tets(2, t)) - a).dot(tm.nodes.col(tm.tets(3, t)) - a);
+    const double six_v = (tm.nodes.col(tm.tets(1, t)) - a)
+                             .cross(tm.nodes.col(tm.tets(2, t)) - a)
+                             .dot(tm.nodes.col(tm.tets(3, t)) - a);
     if (six_v < 0) std::swap(tm.tets(2, t), tm.tets(3, t));
   }
   tm.surface = surface.faces;

@@ -19,7 +19,8 @@ namespace asperity::geometry {
 namespace {
 
 void write_points(std::ostream& os, const Eigen::Matrix3Xd& p, const char* prefix) {
-  for (Eigen::Index i = 0; i < p.cols(); ++i) os << prefix << p(0, i) << ' ' << p(1, i) << ' ' << p(2, i) << '\n';
+  for (Eigen::Index i = 0; i < p.cols(); ++i)
+    os << prefix << p(0, i) << ' ' << p(1, i) << ' ' << p(2, i) << '\n';
 }
 
 void write_binary_stl(std::ostream& os, const SurfaceMesh& m) {
@@ -47,7 +48,8 @@ void write_binary_stl(std::ostream& os, const SurfaceMesh& m) {
 
 }  // namespace
 
-void write_atomically(const std::filesystem::path& file, const std::function<void(std::ostream&)>& fill) {
+void write_atomically(const std::filesystem::path& file,
+                      const std::function<void(std::ostream&)>& fill) {
   const std::filesystem::path tmp = file.string() + ".partial-" + std::to_string(::getpid());
   {
     std::ofstream out(tmp, std::ios::binary | std::ios::trunc);
@@ -66,20 +68,23 @@ void write_atomically(const std::filesystem::path& file, const std::function<voi
 
 void write_surface_mesh(const std::filesystem::path& file, const SurfaceMesh& m) {
   std::string ext = file.extension().string();
-  std::transform(ext.begin(), ext.end(), ext.begin(), [](unsigned char c) { return std::tolower(c); });
+  std::transform(ext.begin(), ext.end(), ext.begin(),
+                 [](unsigned char c) { return std::tolower(c); });
   const Eigen::Index nv = m.vertices.cols(), nf = m.faces.cols();
   if (ext == ".off") {
     write_atomically(file, [&](std::ostream& os) {
       os << "OFF\n" << nv << ' ' << nf << " 0\n";
       write_points(os, m.vertices, "");
-      for (Eigen::Index i = 0; i < nf; ++i) os << "3 " << m.faces(0, i) << ' ' << m.faces(1, i) << ' ' << m.faces(2, i) << '\n';
+      for (Eigen::Index i = 0; i < nf; ++i)
+        os << "3 " << m.faces(0, i) << ' ' << m.faces(1, i) << ' ' << m.faces(2, i) << '\n';
     });
   } else if (ext == ".obj") {
     write_atomically(file, [&](std::ostream& os) {
       os << "# asperity surface mesh, m\n";
       write_points(os, m.vertices, "v ");
       for (Eigen::Index i = 0; i < nf; ++i)
-        os << "f " << m.faces(0, i) + 1 << ' ' << m.faces(1, i) + 1 << ' ' << m.faces(2, i) + 1 << '\n';
+        os << "f " << m.faces(0, i) + 1 << ' ' << m.faces(1, i) + 1 << ' ' << m.faces(2, i) + 1
+           << '\n';
     });
   } else if (ext == ".ply") {
     write_atomically(file, [&](std::ostream& os) {
@@ -87,7 +92,8 @@ void write_surface_mesh(const std::filesystem::path& file, const SurfaceMesh& m)
          << "\nproperty double x\nproperty double y\nproperty double z\nelement face " << nf
          << "\nproperty list uchar int vertex_indices\nend_header\n";
       write_points(os, m.vertices, "");
-      for (Eigen::Index i = 0; i < nf; ++i) os << "3 " << m.faces(0, i) << ' ' << m.faces(1, i) << ' ' << m.faces(2, i) << '\n';
+      for (Eigen::Index i = 0; i < nf; ++i)
+        os << "3 " << m.faces(0, i) << ' ' << m.faces(1, i) << ' ' << m.faces(2, i) << '\n';
     });
   } else if (ext == ".stl") {
     write_atomically(file, [&](std::ostream& os) { write_binary_stl(os, m); });
@@ -100,12 +106,14 @@ void write_surface_mesh(const std::filesystem::path& file, const SurfaceMesh& m)
 void write_vtk_tets(const std::filesystem::path& file, const TetMesh& m) {
   write_atomically(file, [&](std::ostream& os) {
     const Eigen::Index nt = m.tets.cols();
-    os << "# vtk DataFile Version 3.0\nasperity tetrahedral mesh (m)\nASCII\nDATASET UNSTRUCTURED_GRID\n";
+    os << "# vtk DataFile Version 3.0\nasperity tetrahedral mesh (m)\nASCII\nDATASET "
+          "UNSTRUCTURED_GRID\n";
     os << "POINTS " << m.nodes.cols() << " double\n";
     write_points(os, m.nodes, "");
     os << "CELLS " << nt << ' ' << 5 * nt << '\n';
     for (Eigen::Index t = 0; t < nt; ++t)
-      os << "4 " << m.tets(0, t) << ' ' << m.tets(1, t) << ' ' << m.tets(2, t) << ' ' << m.tets(3, t) << '\n';
+      os << "4 " << m.tets(0, t) << ' ' << m.tets(1, t) << ' ' << m.tets(2, t) << ' '
+         << m.tets(3, t) << '\n';
     os << "CELL_TYPES " << nt << '\n';
     for (Eigen::Index t = 0; t < nt; ++t) os << "10\n";
   });

@@ -12,7 +12,8 @@ namespace asperity::geometry {
 
 // Writes through `fill` into FILE.partial-PID, then renames it to FILE. Throws
 // std::runtime_error naming the file when it cannot be written.
-void write_atomically(const std::filesystem::path& file, const std::function<void(std::ostream&)>& fill);
+void write_atomically(const std::filesystem::path& file,
+                      const std::function<void(std::ostream&)>& fill);
 
 // By extension: .off, .obj, .ply (ASCII) with 17 significant digits (doubles round-trip
 // exactly), or .stl (binary, 32-bit floats as the format has). InputError for any other.

@@ -13,11 +13,11 @@ namespace asperity::run {
 // interpolation of s between steps, so the duration is second-order accurate in dt rather than
 // rounded to whole steps.
 struct ImpactMeasures {
-  double peak_force = 0;       // N
-  double impulse = 0;          // ∫|F| dt, trapezoidal, N·s
-  double contact_duration = 0;  // s, time with s > 0
+  double peak_force = 0;           // N
+  double impulse = 0;              // ∫|F| dt, trapezoidal, N·s
+  double contact_duration = 0;     // s, time with s > 0
   double first_contact_time = -1;  // s, -1: none
-  double max_overlap = 0;      // m
+  double max_overlap = 0;          // m
   bool touching = false;
 
   void start(double t, const Vec3& f, double s) {

@@ -34,7 +34,9 @@ double box_gap(const scene::BoxShape& bx, const Vec3& x, double r, Vec3& normal)
   return dist - r;
 }
 
-double rad_to_deg(double a) { return a * 180.0 / std::numbers::pi; }
+double rad_to_deg(double a) {
+  return a * 180.0 / std::numbers::pi;
+}
 
 }  // namespace
 
@@ -55,7 +57,8 @@ std::optional<FirstImpact> first_impact(const scene::SceneDef& s) {
       const Motion o = initial_motion(b);
       // |p + u t| = R + R_b, the earlier root.
       const Vec3 p = r.x - o.x, u = r.v - o.v;
-      const double a = u.squaredNorm(), bq = 2 * p.dot(u), c = p.squaredNorm() - std::pow(rs->radius + sb->radius, 2);
+      const double a = u.squaredNorm(), bq = 2 * p.dot(u),
+                   c = p.squaredNorm() - std::pow(rs->radius + sb->radius, 2);
       const double disc = bq * bq - 4 * a * c;
       if (a > 0 && disc >= 0) {
         const double root = (-bq - std::sqrt(disc)) / (2 * a);
@@ -105,8 +108,9 @@ std::optional<FirstImpact> first_impact(const scene::SceneDef& s) {
   return best;
 }
 
-void add_rebound_measures(const scene::SceneDef& s, const FirstImpact& impact, const BodyMotion& record_end,
-                          const BodyMotion& partner_end, bool separated, nlohmann::ordered_json& j) {
+void add_rebound_measures(const scene::SceneDef& s, const FirstImpact& impact,
+                          const BodyMotion& record_end, const BodyMotion& partner_end,
+                          bool separated, nlohmann::ordered_json& j) {
   const Motion r = initial_motion(s.bodies[s.record.body]);
   const Motion p = initial_motion(s.bodies[impact.partner]);
   const Vec3& n = impact.normal;
@@ -121,8 +125,10 @@ void add_rebound_measures(const scene::SceneDef& s, const FirstImpact& impact, c
   // A slip or tangential speed below 1e-9 of the impact's speed scale counts as none.
   const double scale = v_in.norm() + r.radius * r.w.norm() + p.radius * p.w.norm();
   std::optional<Vec3> t_hat;
-  if (slip_in.norm() > 1e-9 * scale) t_hat = slip_in.normalized();
-  else if (vt_in.norm() > 1e-9 * scale) t_hat = vt_in.normalized();
+  if (slip_in.norm() > 1e-9 * scale)
+    t_hat = slip_in.normalized();
+  else if (vt_in.norm() > 1e-9 * scale)
+    t_hat = vt_in.normalized();
 
   j["impact_partner"] = s.bodies[impact.partner].name;
   j["normal_velocity_in"] = -v_in.dot(n);

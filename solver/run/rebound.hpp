@@ -15,9 +15,9 @@ namespace asperity::run {
 // Where the recorded sphere first touches another body, found from the scene's initial state by
 // straight-line motion (so only for scenes without gravity).
 struct FirstImpact {
-  int partner = -1;            // scene body index
+  int partner = -1;             // scene body index
   Vec3 normal = Vec3::UnitZ();  // unit, from the partner into the recorded sphere
-  double time = 0;             // s
+  double time = 0;              // s
 };
 
 // Empty when the scene has gravity, the recorded body is not a free sphere, or nothing is hit
@@ -40,7 +40,8 @@ struct BodyMotion {
 // t̂ is the direction of the incoming contact-point slip, or of the incoming centre tangential
 // velocity when there is no slip; quantities along t̂ are omitted when neither exists.
 // `separated`: the first contact has ended (otherwise the "out" keys are omitted).
-void add_rebound_measures(const scene::SceneDef& s, const FirstImpact& impact, const BodyMotion& record_end,
-                          const BodyMotion& partner_end, bool separated, nlohmann::ordered_json& summary);
+void add_rebound_measures(const scene::SceneDef& s, const FirstImpact& impact,
+                          const BodyMotion& record_end, const BodyMotion& partner_end,
+                          bool separated, nlohmann::ordered_json& summary);
 
 }  // namespace asperity::run

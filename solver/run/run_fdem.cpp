@@ -30,7 +30,9 @@ std::string fmt(double x) {
   return s.str();
 }
 
-double cpu_seconds() { return static_cast<double>(std::clock()) / CLOCKS_PER_SEC; }
+double cpu_seconds() {
+  return static_cast<double>(std::clock()) / CLOCKS_PER_SEC;
+}
 
 // FEM/DEM default dt_safety (the sphere DEM's 0.01 resolves a Hertz contact in ~200 steps).
 // Here the step is set by element and penalty stiffness, each contact spans thousands of steps
@@ -48,8 +50,9 @@ TetMesh mesh_body(const scene::MeshShape& m, const std::string& key) {
   return geometry::prepare_particle(m.file, o).tets;
 #else
   (void)m;
-  throw InputError(key + "shape: mesh bodies need the geometry pipeline (solver/geometry), "
-                         "which is not in this build");
+  throw InputError(key +
+                   "shape: mesh bodies need the geometry pipeline (solver/geometry), "
+                   "which is not in this build");
 #endif
 }
 
@@ -75,12 +78,14 @@ struct Built {
 Built build(const scene::SceneDef& s) {
   const std::string where = s.file.string() + ": ";
   if (s.contact.law != scene::ContactLaw::potential) {
-    throw InputError(where + "contact.law: mesh bodies collide through \"potential\" (Munjiza's "
-                             "distributed potential); set contact.law to \"potential\"");
+    throw InputError(where +
+                     "contact.law: mesh bodies collide through \"potential\" (Munjiza's "
+                     "distributed potential); set contact.law to \"potential\"");
   }
   if (s.contact.restitution) {
-    throw InputError(where + "contact.restitution: the potential law is elastic (energy is "
-                             "lost only to friction and element damping); remove the key");
+    throw InputError(where +
+                     "contact.restitution: the potential law is elastic (energy is "
+                     "lost only to friction and element damping); remove the key");
   }
   Built out;
   double friction = 1e300;
@@ -110,8 +115,9 @@ Built build(const scene::SceneDef& s) {
       planes.emplace_back(static_cast<int>(b), plane);
       continue;  // sized once every other body is known
     } else {
-      throw InputError(key + "shape: spheres cannot share a scene with mesh bodies (mesh the "
-                             "sphere: shape \"mesh\")");
+      throw InputError(key +
+                       "shape: spheres cannot share a scene with mesh bodies (mesh the "
+                       "sphere: shape \"mesh\")");
     }
     for (Eigen::Index i = 0; i < d.mesh.nodes.cols(); ++i) extent.extend(d.mesh.nodes.col(i));
     out.def.bodies.push_back(std::move(d));
@@ -124,7 +130,9 @@ Built build(const scene::SceneDef& s) {
     double reach = 1.0;
     if (!extent.isEmpty()) {
       for (int c = 0; c < 8; ++c) {
-        reach = std::max(reach, (extent.corner(static_cast<Eigen::AlignedBox3d::CornerType>(c)) - plane->point).norm());
+        reach = std::max(
+            reach,
+            (extent.corner(static_cast<Eigen::AlignedBox3d::CornerType>(c)) - plane->point).norm());
       }
     }
     const Vec3 n = plane->normal.normalized();
@@ -134,7 +142,8 @@ Built build(const scene::SceneDef& s) {
     const double l = 4 * reach;
     fdem::BodyDef d{.name = s.bodies[b].name,
                     .kind = fdem::BodyKind::fixed,
-                    .mesh = fdem::oriented_box_mesh(plane->point, frame, Vec3(-l, -l, -l), Vec3(l, l, 0), 1, 1, 1),
+                    .mesh = fdem::oriented_box_mesh(plane->point, frame, Vec3(-l, -l, -l),
+                                                    Vec3(l, l, 0), 1, 1, 1),
                     .material = s.materials[s.bodies[b].material]};
     out.def.bodies.push_back(std::move(d));
     out.scene_body.push_back(b);
@@ -152,9 +161,12 @@ Built build(const scene::SceneDef& s) {
 
 const char* kind_name(fdem::BodyKind k) {
   switch (k) {
-    case fdem::BodyKind::deformable: return "fem";
-    case fdem::BodyKind::rigid: return "rigid";
-    case fdem::BodyKind::fixed: return "fixed";
+    case fdem::BodyKind::deformable:
+      return "fem";
+    case fdem::BodyKind::rigid:
+      return "rigid";
+    case fdem::BodyKind::fixed:
+      return "fixed";
   }
   return "?";
 }
@@ -184,7 +196,8 @@ RunResult run_fdem(const scene::SceneDef& s, const RunOptions& options) {
       const auto c = contact::munjiza_potential(ta, tb, w.penalty, false);
       if (c.touching()) {
         throw InputError(where + "bodies \"" + w.bodies[a].name + "\" and \"" + w.bodies[b].name +
-                         "\": position: they start overlapping (by " + fmt(c.depth) + " m or more)");
+                         "\": position: they start overlapping (by " + fmt(c.depth) +
+                         " m or more)");
       }
     }
   }
@@ -238,15 +251,19 @@ RunResult run_fdem(const scene::SceneDef& s, const RunOptions& options) {
   im.start(0, w.record_force, w.record_depth);
   const fdem::EnergyTerms e0 = fdem::energy(w);
   auto balance = [](const fdem::EnergyTerms& e) {
-    return EnergyBalance{.kinetic = e.kinetic, .elastic = e.elastic, .contact = e.contact,
-                         .gravity = e.gravity, .dissipated = e.dissipated};
+    return EnergyBalance{.kinetic = e.kinetic,
+                         .elastic = e.elastic,
+                         .contact = e.contact,
+                         .gravity = e.gravity,
+                         .dissipated = e.dissipated};
   };
   RunMonitor monitor(s.name, balance(e0), s.unstable_energy_growth, n_steps, options.progress);
   auto push_rows = [&](const fdem::EnergyTerms& e) {
     if (!options.keep_rows) return;
     const Vec3& f = w.record_force;
     result.force.push_back({w.time, f.x(), f.y(), f.z(), f.norm()});
-    result.energy.push_back({w.time, e.kinetic, e.elastic, e.contact, e.gravity, e.dissipated, e.total()});
+    result.energy.push_back(
+        {w.time, e.kinetic, e.elastic, e.contact, e.gravity, e.dissipated, e.total()});
   };
   push_rows(e0);
   // Energy needs the contact energy integrals (extra clipping), so it is checked at most every
@@ -282,7 +299,8 @@ RunResult run_fdem(const scene::SceneDef& s, const RunOptions& options) {
   }
   monitor.finish();
   const double cpu = cpu_seconds() - cpu0;
-  const double wall = std::chrono::duration<double>(std::chrono::steady_clock::now() - wall0).count();
+  const double wall =
+      std::chrono::duration<double>(std::chrono::steady_clock::now() - wall0).count();
 
   result.status = monitor.status(im.first_contact_time >= 0);
   result.message = monitor.message();
@@ -305,7 +323,8 @@ RunResult run_fdem(const scene::SceneDef& s, const RunOptions& options) {
   // velocities of its centre of mass relative to the partner's, at the first contact's start and
   // end.
   const double in_speed = impulse.norm() > 0 ? -v_approach.dot(impulse.normalized()) : 0;
-  j["restitution"] = (ended && in_speed > 0) ? J(v_separation.dot(impulse.normalized()) / in_speed) : J();
+  j["restitution"] =
+      (ended && in_speed > 0) ? J(v_separation.dot(impulse.normalized()) / in_speed) : J();
   j["energy_drift"] = drift;
   j["dt"] = dt;
   j["dt_critical_predicted"] = crit.critical;
@@ -329,7 +348,9 @@ RunResult run_fdem(const scene::SceneDef& s, const RunOptions& options) {
   j["contacts_touching"] = w.contacts_touching;
   J bodies = J::array();
   for (const fdem::Body& b : w.bodies) {
-    J e = {{"name", b.name}, {"model", kind_name(b.kind)}, {"nodes", b.node_end - b.node_begin},
+    J e = {{"name", b.name},
+           {"model", kind_name(b.kind)},
+           {"nodes", b.node_end - b.node_begin},
            {"mass", b.mass}};
     if (b.elements >= 0) e["tets"] = w.elements[b.elements].size();
     bodies.push_back(e);

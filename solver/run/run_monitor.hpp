@@ -23,15 +23,21 @@ class RunMonitor {
   // growth_limit: the scene's unstable_energy_growth; n_steps for the progress line.
   RunMonitor(const std::string& name, const EnergyBalance& e0, double growth_limit, long n_steps,
              bool progress)
-      : name_(name), e0_(e0), total0_(e0.total()), supplied_(e0.kinetic + e0.elastic + e0.contact),
-        growth_limit_(growth_limit), n_steps_(n_steps), progress_(progress),
+      : name_(name),
+        e0_(e0),
+        total0_(e0.total()),
+        supplied_(e0.kinetic + e0.elastic + e0.contact),
+        growth_limit_(growth_limit),
+        n_steps_(n_steps),
+        progress_(progress),
         wall0_(std::chrono::steady_clock::now()) {}
 
   // Feeds one energy evaluation at time t. The energy scale is what the physics supplied: the
   // initial kinetic, elastic and contact energy plus what gravity has released so far; growth
   // beyond it is made by the integrator. Flags a non-finite state or growth above the limit.
   void check_energy(double t, const EnergyBalance& e, bool state_finite) {
-    supplied_ = std::max(supplied_, e0_.kinetic + e0_.elastic + e0_.contact + std::max(0.0, -e.gravity));
+    supplied_ =
+        std::max(supplied_, e0_.kinetic + e0_.elastic + e0_.contact + std::max(0.0, -e.gravity));
     if (!state_finite || !std::isfinite(e.total())) {
       flag("non-finite state at t = " + fmt(t) + " s");
       return;
@@ -63,8 +69,8 @@ class RunMonitor {
     if (el - last_progress_ < 1.0) return;
     last_progress_ = el;
     const double done = static_cast<double>(k) / static_cast<double>(n_steps_);
-    std::fprintf(stderr, "\r%s: %5.1f%%  step %ld/%ld  %.0f s left ", name_.c_str(), 100.0 * done, k,
-                 n_steps_, el * (1 - done) / done);
+    std::fprintf(stderr, "\r%s: %5.1f%%  step %ld/%ld  %.0f s left ", name_.c_str(), 100.0 * done,
+                 k, n_steps_, el * (1 - done) / done);
   }
   void finish() const {
     if (progress_ && last_progress_ > 0) std::fprintf(stderr, "\n");

@@ -11,13 +11,13 @@
 
 #include "core/error.hpp"
 #include "core/ticks.hpp"
-#include "io/atomic_file.hpp"
 #include "dem/sphere_world.hpp"
 #include "dem/time_step.hpp"
+#include "io/atomic_file.hpp"
 #include "run/impact_measures.hpp"
-#include "run/run_monitor.hpp"
-#include "run/run_fdem.hpp"
 #include "run/rebound.hpp"
+#include "run/run_fdem.hpp"
+#include "run/run_monitor.hpp"
 
 namespace asperity::run {
 namespace {
@@ -31,10 +31,14 @@ std::string fmt(double x) {
 
 const char* law_name(scene::ContactLaw law) {
   switch (law) {
-    case scene::ContactLaw::hertz: return "hertz";
-    case scene::ContactLaw::hertz_mindlin: return "hertz-mindlin";
-    case scene::ContactLaw::linear: return "linear";
-    case scene::ContactLaw::potential: return "potential";
+    case scene::ContactLaw::hertz:
+      return "hertz";
+    case scene::ContactLaw::hertz_mindlin:
+      return "hertz-mindlin";
+    case scene::ContactLaw::linear:
+      return "linear";
+    case scene::ContactLaw::potential:
+      return "potential";
   }
   return "?";
 }
@@ -62,8 +66,9 @@ dem::SphereWorld build_sphere_world(const scene::SceneDef& s) {
       w.law.kt = s.contact.kt.value_or(2.0 / 7.0 * w.law.kn);
       break;
     case scene::ContactLaw::potential:
-      throw InputError(where + "contact.law: \"potential\" needs mesh bodies (model \"fem\" or a "
-                               "rigid mesh); spheres use hertz, hertz-mindlin or linear");
+      throw InputError(where +
+                       "contact.law: \"potential\" needs mesh bodies (model \"fem\" or a "
+                       "rigid mesh); spheres use hertz, hertz-mindlin or linear");
   }
   w.law.friction = s.contact.friction;
   w.law.restitution = s.contact.restitution;
@@ -74,7 +79,8 @@ dem::SphereWorld build_sphere_world(const scene::SceneDef& s) {
     const std::string key = "bodies[" + std::to_string(b) + "] \"" + body.name + "\": ";
     if (const auto* sph = std::get_if<scene::SphereShape>(&body.shape)) {
       const double r = sph->radius;
-      const double m = s.materials[body.material].density * 4.0 / 3.0 * std::numbers::pi * r * r * r;
+      const double m =
+          s.materials[body.material].density * 4.0 / 3.0 * std::numbers::pi * r * r * r;
       w.radius.push_back(r);
       w.mass.push_back(m);
       w.inertia.push_back(0.4 * m * r * r);
@@ -85,14 +91,21 @@ dem::SphereWorld build_sphere_world(const scene::SceneDef& s) {
       v.push_back(body.fixed ? Vec3::Zero() : body.velocity);
       om.push_back(body.fixed ? Vec3::Zero() : body.angular_velocity);
     } else if (const auto* pl = std::get_if<scene::PlaneShape>(&body.shape)) {
-      w.walls.push_back({.kind = dem::WallKind::plane, .a = pl->point, .b = pl->normal,
-                         .material = body.material, .body = static_cast<int>(b)});
+      w.walls.push_back({.kind = dem::WallKind::plane,
+                         .a = pl->point,
+                         .b = pl->normal,
+                         .material = body.material,
+                         .body = static_cast<int>(b)});
     } else if (const auto* bx = std::get_if<scene::BoxShape>(&body.shape)) {
-      w.walls.push_back({.kind = dem::WallKind::box, .a = bx->min, .b = bx->max,
-                         .material = body.material, .body = static_cast<int>(b)});
+      w.walls.push_back({.kind = dem::WallKind::box,
+                         .a = bx->min,
+                         .b = bx->max,
+                         .material = body.material,
+                         .body = static_cast<int>(b)});
     } else {
-      throw InputError(where + key + "shape: mesh bodies are not available in this build's "
-                                     "solver (spheres, planes and boxes are)");
+      throw InputError(where + key +
+                       "shape: mesh bodies are not available in this build's "
+                       "solver (spheres, planes and boxes are)");
     }
   }
   const int n = static_cast<int>(x.size());
@@ -137,7 +150,9 @@ dem::SphereWorld build_sphere_world(const scene::SceneDef& s) {
   return w;
 }
 
-double cpu_seconds() { return static_cast<double>(std::clock()) / CLOCKS_PER_SEC; }
+double cpu_seconds() {
+  return static_cast<double>(std::clock()) / CLOCKS_PER_SEC;
+}
 
 // Sphere DEM default dt_safety: ≥ 200 steps per contact keep the energy error below 1e-4.
 constexpr double kSphereSafety = 0.01;
@@ -150,8 +165,9 @@ RunResult run_scene(const scene::SceneDef& s, const RunOptions& options) {
   dem::SphereWorld w = build_sphere_world(s);
   const dem::CriticalStep crit = dem::critical_step(w);
 
-  const std::optional<double> given = options.dt_factor ? std::optional<double>(*options.dt_factor * crit.critical)
-                                      : (options.dt ? options.dt : s.dt);
+  const std::optional<double> given =
+      options.dt_factor ? std::optional<double>(*options.dt_factor * crit.critical)
+                        : (options.dt ? options.dt : s.dt);
   double dt = 0;
   if (options.dt_factor && !std::isfinite(crit.critical)) {
     throw InputError(where + "dt: no predicted critical step to scale (no free body)");
@@ -167,7 +183,8 @@ RunResult run_scene(const scene::SceneDef& s, const RunOptions& options) {
     }
   } else {
     if (!std::isfinite(crit.critical)) {
-      throw InputError(where + "dt: \"auto\" has no critical step to scale (no free sphere); give dt in s");
+      throw InputError(where +
+                       "dt: \"auto\" has no critical step to scale (no free sphere); give dt in s");
     }
     dt = s.dt_safety.value_or(kSphereSafety) * crit.critical;
   }
@@ -185,7 +202,9 @@ RunResult run_scene(const scene::SceneDef& s, const RunOptions& options) {
   ImpactMeasures im;
   im.start(0, w.record_force, w.record_overlap);
   auto balance = [](const dem::EnergyTerms& e) {
-    return EnergyBalance{.kinetic = e.kinetic, .contact = e.contact, .gravity = e.gravity,
+    return EnergyBalance{.kinetic = e.kinetic,
+                         .contact = e.contact,
+                         .gravity = e.gravity,
                          .dissipated = e.dissipated};
   };
   const dem::EnergyTerms e0 = dem::energy(w);
@@ -194,7 +213,8 @@ RunResult run_scene(const scene::SceneDef& s, const RunOptions& options) {
     if (!options.keep_rows) return;
     const Vec3& f = w.record_force;
     result.force.push_back({w.time, f.x(), f.y(), f.z(), f.norm()});
-    result.energy.push_back({w.time, e.kinetic, 0.0, e.contact, e.gravity, e.dissipated, e.total()});
+    result.energy.push_back(
+        {w.time, e.kinetic, 0.0, e.contact, e.gravity, e.dissipated, e.total()});
   };
   push_rows(e0);
   // Energy is checked every step for small scenes, else every `every` steps (it costs O(N)).
@@ -215,7 +235,8 @@ RunResult run_scene(const scene::SceneDef& s, const RunOptions& options) {
   }
   monitor.finish();
   const double cpu = cpu_seconds() - cpu0;
-  const double wall = std::chrono::duration<double>(std::chrono::steady_clock::now() - wall0).count();
+  const double wall =
+      std::chrono::duration<double>(std::chrono::steady_clock::now() - wall0).count();
   const double per_tick = seconds_per_tick(wall, ticks() - ticks0);
 
   result.status = monitor.status(im.first_contact_time >= 0);
@@ -232,11 +253,14 @@ RunResult run_scene(const scene::SceneDef& s, const RunOptions& options) {
   j["peak_force"] = im.peak_force;
   j["impulse"] = im.impulse;
   j["contact_duration"] = im.duration_until(w.time);
-  j["first_contact_time"] = im.first_contact_time < 0 ? nlohmann::ordered_json() : nlohmann::ordered_json(im.first_contact_time);
+  j["first_contact_time"] = im.first_contact_time < 0
+                                ? nlohmann::ordered_json()
+                                : nlohmann::ordered_json(im.first_contact_time);
   j["max_overlap"] = im.max_overlap;
-  j["restitution"] = (w.record_contacts_ended > 0 && w.record_approach_speed > 0)
-                         ? nlohmann::ordered_json(w.record_separation_speed / w.record_approach_speed)
-                         : nlohmann::ordered_json();
+  j["restitution"] =
+      (w.record_contacts_ended > 0 && w.record_approach_speed > 0)
+          ? nlohmann::ordered_json(w.record_separation_speed / w.record_approach_speed)
+          : nlohmann::ordered_json();
   j["energy_drift"] = drift;
   // Oblique-impact rebound of the recorded sphere (run/rebound.hpp; Chung & Ooi tests 4–8).
   if (const std::optional<FirstImpact> impact = first_impact(s)) {
@@ -261,9 +285,11 @@ RunResult run_scene(const scene::SceneDef& s, const RunOptions& options) {
   j["dt"] = dt;
   j["dt_critical_predicted"] = crit.critical;
   j["dt_rayleigh"] = crit.rayleigh;
-  j["dt_contact"] = std::isfinite(crit.contact) ? nlohmann::ordered_json(crit.contact) : nlohmann::ordered_json();
+  j["dt_contact"] =
+      std::isfinite(crit.contact) ? nlohmann::ordered_json(crit.contact) : nlohmann::ordered_json();
   j["dt_limited_by"] = crit.limited_by;
-  j["dt_safety"] = given ? nlohmann::ordered_json() : nlohmann::ordered_json(s.dt_safety.value_or(kSphereSafety));
+  j["dt_safety"] = given ? nlohmann::ordered_json()
+                         : nlohmann::ordered_json(s.dt_safety.value_or(kSphereSafety));
   j["assumed_approach_speed"] = crit.approach_speed;
   j["steps"] = w.steps;
   j["simulated_time"] = w.time;
@@ -282,7 +308,8 @@ RunResult run_scene(const scene::SceneDef& s, const RunOptions& options) {
                      const int nm = static_cast<int>(w.materials.size());
                      for (int a = 0; a < nm; ++a)
                        for (int b = a; b < nm; ++b)
-                         z[w.materials[a].name + "|" + w.materials[b].name] = w.pair[a * nm + b].zeta;
+                         z[w.materials[a].name + "|" + w.materials[b].name] =
+                             w.pair[a * nm + b].zeta;
                      return z;
                    }()}};
   return result;

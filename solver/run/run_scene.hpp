@@ -24,8 +24,8 @@ struct RunOptions {
   std::optional<double> dt_factor;  // dt = factor × the predicted critical step (stability
                                     // sweeps; implies allow_unsafe_dt); wins over `dt`
   bool allow_unsafe_dt = false;
-  bool keep_rows = true;     // fill force and energy rows (off for sweeps)
-  bool progress = false;     // progress line on stderr for long runs
+  bool keep_rows = true;  // fill force and energy rows (off for sweeps)
+  bool progress = false;  // progress line on stderr for long runs
 };
 
 struct RunResult {

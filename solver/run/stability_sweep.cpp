@@ -38,12 +38,15 @@ std::vector<double> parse_factors(const std::string& text, const std::string& wh
 }
 
 namespace {
-double rel(double got, double ref) { return ref != 0 ? (got - ref) / std::abs(ref) : got - ref; }
+double rel(double got, double ref) {
+  return ref != 0 ? (got - ref) / std::abs(ref) : got - ref;
+}
 }  // namespace
 
-StabilityResult stability_sweep(const scene::SceneDef& scene, std::vector<double> factors,
-                                std::optional<double> reference_factor,
-                                const std::function<void(const StabilityRow&, int, int)>& progress) {
+StabilityResult stability_sweep(
+    const scene::SceneDef& scene, std::vector<double> factors,
+    std::optional<double> reference_factor,
+    const std::function<void(const StabilityRow&, int, int)>& progress) {
   std::sort(factors.begin(), factors.end());
   factors.erase(std::unique(factors.begin(), factors.end()), factors.end());
   StabilityResult result;
@@ -66,7 +69,8 @@ StabilityResult stability_sweep(const scene::SceneDef& scene, std::vector<double
     ++runs;
     safety = automatic.summary["dt_safety"].get<double>();
   }
-  const double ref_factor = reference_factor.value_or(std::min(safety.value_or(1.0), factors.front() / 8));
+  const double ref_factor =
+      reference_factor.value_or(std::min(safety.value_or(1.0), factors.front() / 8));
   const RunResult ref = run_at(ref_factor);
   const double predicted = ref.summary["dt_critical_predicted"].get<double>();
   const double ref_peak = ref.summary["peak_force"].get<double>();
@@ -104,19 +108,24 @@ StabilityResult stability_sweep(const scene::SceneDef& scene, std::vector<double
   auto& j = result.summary;
   j["scene"] = scene.name;
   j["dt_critical_predicted"] = predicted;
-  j["dt_stable_max_measured"] = stable_max ? nlohmann::ordered_json(*stable_max * predicted) : nlohmann::ordered_json();
-  j["stable_factor_max"] = stable_max ? nlohmann::ordered_json(*stable_max) : nlohmann::ordered_json();
-  j["first_unstable_factor"] = first_unstable ? nlohmann::ordered_json(*first_unstable) : nlohmann::ordered_json();
+  j["dt_stable_max_measured"] =
+      stable_max ? nlohmann::ordered_json(*stable_max * predicted) : nlohmann::ordered_json();
+  j["stable_factor_max"] =
+      stable_max ? nlohmann::ordered_json(*stable_max) : nlohmann::ordered_json();
+  j["first_unstable_factor"] =
+      first_unstable ? nlohmann::ordered_json(*first_unstable) : nlohmann::ordered_json();
   // Conservative prediction: ratio ≤ 1. The bracket is as fine as the factors tried.
-  j["predicted_over_measured"] = stable_max ? nlohmann::ordered_json(1.0 / *stable_max) : nlohmann::ordered_json();
+  j["predicted_over_measured"] =
+      stable_max ? nlohmann::ordered_json(1.0 / *stable_max) : nlohmann::ordered_json();
   j["status_at_largest_factor"] = result.rows.back().status;
   j["reference_factor"] = ref_factor;
   j["reference_status"] = ref.status;
   j["auto_status"] = auto_status;
   j["reference_peak_force"] = ref_peak;
   j["reference_impulse"] = ref_impulse;
-  j["criteria"] = "unstable: non-finite state, total energy growth above unstable_energy_growth of "
-                  "the energy scale, or an overlap beyond the smaller radius (runaway overlap)";
+  j["criteria"] =
+      "unstable: non-finite state, total energy growth above unstable_energy_growth of "
+      "the energy scale, or an overlap beyond the smaller radius (runaway overlap)";
   j["sweep_cpu_seconds"] = sweep_cpu;
   j["runs"] = result.rows.size() + static_cast<std::size_t>(runs);
   return result;
@@ -126,11 +135,12 @@ void write_stability(const StabilityResult& result, const std::filesystem::path&
   std::filesystem::create_directories(out);
   std::ostringstream csv;
   csv.precision(10);
-  csv << "factor,dt,status,energy_drift,peak_force,cpu_seconds,impulse,peak_force_error,impulse_error\n";
+  csv << "factor,dt,status,energy_drift,peak_force,cpu_seconds,impulse,peak_force_error,impulse_"
+         "error\n";
   for (const StabilityRow& r : result.rows) {
-    csv << r.factor << ',' << r.dt << ',' << r.status << ',' << r.energy_drift << ',' << r.peak_force
-        << ',' << r.cpu_seconds << ',' << r.impulse << ',' << r.peak_force_error << ','
-        << r.impulse_error << '\n';
+    csv << r.factor << ',' << r.dt << ',' << r.status << ',' << r.energy_drift << ','
+        << r.peak_force << ',' << r.cpu_seconds << ',' << r.impulse << ',' << r.peak_force_error
+        << ',' << r.impulse_error << '\n';
   }
   io::write_atomically(out / "stability.csv", csv.str());
   io::write_atomically(out / "summary.json", result.summary.dump(2) + "\n");

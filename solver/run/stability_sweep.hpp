@@ -34,11 +34,12 @@ std::vector<double> default_stability_factors();
 std::vector<double> parse_factors(const std::string& text, const std::string& what);
 
 // Runs the scene at each factor × dt_critical_predicted (unstable runs stop early) plus a
-// reference at reference_factor (default: the smaller of the dt_safety the automatic step used and an eighth of
-// the smallest factor), and classifies each run. `progress` is called after each run.
-StabilityResult stability_sweep(const scene::SceneDef& scene, std::vector<double> factors,
-                                std::optional<double> reference_factor = std::nullopt,
-                                const std::function<void(const StabilityRow&, int, int)>& progress = {});
+// reference at reference_factor (default: the smaller of the dt_safety the automatic step used and
+// an eighth of the smallest factor), and classifies each run. `progress` is called after each run.
+StabilityResult stability_sweep(
+    const scene::SceneDef& scene, std::vector<double> factors,
+    std::optional<double> reference_factor = std::nullopt,
+    const std::function<void(const StabilityRow&, int, int)>& progress = {});
 
 // DIR/stability.csv and DIR/summary.json (each via a temporary file and a rename).
 void write_stability(const StabilityResult& result, const std::filesystem::path& out);

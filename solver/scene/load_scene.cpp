@@ -75,7 +75,8 @@ ContactDef parse_contact(const JsonReader& c) {
   } else if (law == "potential") {
     out.law = ContactLaw::potential;
   } else {
-    const std::string near = io::closest_key(law, {"hertz", "hertz-mindlin", "linear", "potential"});
+    const std::string near =
+        io::closest_key(law, {"hertz", "hertz-mindlin", "linear", "potential"});
     c.fail("law", "unknown contact law \"" + law + "\"" +
                       (near.empty() ? "" : " (did you mean \"" + near + "\"?)") +
                       "; expected hertz, hertz-mindlin, linear or potential");
@@ -109,7 +110,8 @@ SceneDef parse_scene(const io::Json& json, const std::filesystem::path& file,
   if (r.has("dt")) {
     const auto& dt = r.value().at("dt");
     if (dt.is_string()) {
-      if (dt.get<std::string>() != "auto") r.fail("dt", "must be a number or \"auto\" (got " + dt.dump() + ")");
+      if (dt.get<std::string>() != "auto")
+        r.fail("dt", "must be a number or \"auto\" (got " + dt.dump() + ")");
     } else {
       s.dt = r.positive("dt");
     }
@@ -117,7 +119,8 @@ SceneDef parse_scene(const io::Json& json, const std::filesystem::path& file,
   // A safety factor above 1 is past the predicted limit by construction.
   if (r.has("dt_safety")) s.dt_safety = r.in_range("dt_safety", 0.0, 1.0, true, false);
   s.allow_unsafe_dt = r.boolean_or("allow_unsafe_dt", false);
-  if (r.has("unstable_energy_growth")) s.unstable_energy_growth = r.positive("unstable_energy_growth");
+  if (r.has("unstable_energy_growth"))
+    s.unstable_energy_growth = r.positive("unstable_energy_growth");
 
   const JsonReader mats = r.child("materials");
   mats.require_object();
@@ -138,7 +141,8 @@ SceneDef parse_scene(const io::Json& json, const std::filesystem::path& file,
                  "fixed"});
     BodyDef body;
     body.name = b.string("name");
-    if (!names.insert(body.name).second) b.fail("name", "duplicate body name \"" + body.name + "\"");
+    if (!names.insert(body.name).second)
+      b.fail("name", "duplicate body name \"" + body.name + "\"");
     const std::string mat = b.string("material");
     auto it = material_index.find(mat);
     if (it == material_index.end()) b.fail("material", "no material named \"" + mat + "\"");
@@ -160,8 +164,10 @@ SceneDef parse_scene(const io::Json& json, const std::filesystem::path& file,
     const bool is_wall = std::holds_alternative<PlaneShape>(body.shape) ||
                          std::holds_alternative<BoxShape>(body.shape);
     body.fixed = b.boolean_or("fixed", is_wall);
-    if (is_wall && !body.fixed) b.fail("fixed", "planes and boxes are fixed bodies; use a mesh body for a moving block");
-    if (is_wall && body.model == Model::fem) b.fail("model", "planes and boxes are rigid; use a mesh body for a deformable block");
+    if (is_wall && !body.fixed)
+      b.fail("fixed", "planes and boxes are fixed bodies; use a mesh body for a moving block");
+    if (is_wall && body.model == Model::fem)
+      b.fail("model", "planes and boxes are rigid; use a mesh body for a deformable block");
     if (std::holds_alternative<SphereShape>(body.shape) && body.model == Model::fem) {
       b.fail("model", "a sphere is rigid here; mesh it (shape \"mesh\") to make it deformable");
     }

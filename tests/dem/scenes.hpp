@@ -6,8 +6,12 @@
 namespace asperity::test {
 
 inline Material glass(double friction = 0, double restitution = 1) {
-  return {.name = "glass", .density = 2500, .young = 6.3e10, .poisson = 0.23,
-          .friction = friction, .restitution = restitution};
+  return {.name = "glass",
+          .density = 2500,
+          .young = 6.3e10,
+          .poisson = 0.23,
+          .friction = friction,
+          .restitution = restitution};
 }
 
 // A sphere of radius r touching the plane z = 0 at t = 0 (zero gap), moving down at v.
@@ -17,10 +21,15 @@ inline scene::SceneDef sphere_on_plane(double v, double duration, scene::Contact
   s.duration = duration;
   s.materials = {glass()};
   s.bodies = {
-      {.name = "ball", .material = 0, .shape = scene::SphereShape{.radius = 0.01},
-       .position = Vec3(0, 0, 0.01), .velocity = Vec3(0, 0, -v)},
-      {.name = "floor", .material = 0,
-       .shape = scene::PlaneShape{.point = Vec3::Zero(), .normal = Vec3::UnitZ()}, .fixed = true},
+      {.name = "ball",
+       .material = 0,
+       .shape = scene::SphereShape{.radius = 0.01},
+       .position = Vec3(0, 0, 0.01),
+       .velocity = Vec3(0, 0, -v)},
+      {.name = "floor",
+       .material = 0,
+       .shape = scene::PlaneShape{.point = Vec3::Zero(), .normal = Vec3::UnitZ()},
+       .fixed = true},
   };
   s.contact.law = law;
   s.record = {.body = 0, .every = 1};

@@ -22,7 +22,8 @@ TEST(IntegratorOrder, PeakForceErrorFallsAtSecondOrder) {
   std::vector<double> dts, errors;
   for (int n : {10, 20, 40, 80}) {
     const double dt = h.contact_duration / (2 * n);
-    const run::RunResult r = run::run_scene(s, {.dt = dt, .allow_unsafe_dt = true, .keep_rows = false});
+    const run::RunResult r =
+        run::run_scene(s, {.dt = dt, .allow_unsafe_dt = true, .keep_rows = false});
     dts.push_back(dt);
     errors.push_back(std::abs(r.summary["peak_force"].get<double>() / h.peak_force - 1));
   }

@@ -30,7 +30,8 @@ TEST(TimeStep, StableAtHalfAndUnstableAboveTheExactLimit) {
   const scene::SceneDef s = linear_scene();
   const double m = 2500 * 4.0 / 3.0 * M_PI * 1e-6;
   const double exact = 2 * std::sqrt(m / 1e7);  // sphere on a fixed plane: m* = m
-  const run::RunResult below = run::run_scene(s, {.dt = 0.5 * exact, .allow_unsafe_dt = true, .keep_rows = false});
+  const run::RunResult below =
+      run::run_scene(s, {.dt = 0.5 * exact, .allow_unsafe_dt = true, .keep_rows = false});
   // At ω dt = 1 the leapfrog energy oscillates by a third at most ((1 − (ω dt/2)²)⁻¹) and stays
   // bounded: below the 50 % growth that flags instability.
   EXPECT_EQ(below.status, "ok");
@@ -38,7 +39,8 @@ TEST(TimeStep, StableAtHalfAndUnstableAboveTheExactLimit) {
   // until the sphere passes through the plane or the energy explodes.
   scene::SceneDef longer = s;
   longer.duration = 0.05;
-  const run::RunResult above = run::run_scene(longer, {.dt = 1.2 * exact, .allow_unsafe_dt = true, .keep_rows = false});
+  const run::RunResult above =
+      run::run_scene(longer, {.dt = 1.2 * exact, .allow_unsafe_dt = true, .keep_rows = false});
   EXPECT_EQ(above.status, "unstable");
 }
 

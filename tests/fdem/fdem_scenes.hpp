@@ -13,7 +13,12 @@
 namespace asperity::fdem::scenes {
 
 inline Material rubbery() {
-  return {.name = "soft", .density = 1000, .young = 1e7, .poisson = 0.3, .friction = 0, .restitution = 1};
+  return {.name = "soft",
+          .density = 1000,
+          .young = 1e7,
+          .poisson = 0.3,
+          .friction = 0,
+          .restitution = 1};
 }
 
 inline TetMesh translated(TetMesh m, const Vec3& d) {
@@ -56,7 +61,8 @@ inline Hertz hertz_sphere_on_rigid_plane(double r, double v, const Material& m) 
   const double e_star = m.young / (1 - m.poisson * m.poisson);
   const double mass = m.density * 4.0 / 3.0 * std::numbers::pi * r * r * r;
   const double d = std::pow(15 * mass * v * v / (16 * e_star * std::sqrt(r)), 0.4);
-  return {.overlap = d, .force = 4.0 / 3.0 * e_star * std::sqrt(r) * std::pow(d, 1.5),
+  return {.overlap = d,
+          .force = 4.0 / 3.0 * e_star * std::sqrt(r) * std::pow(d, 1.5),
           .duration = 2.9432 * d / v};
 }
 

@@ -31,7 +31,8 @@ TEST(BroadPhase, MatchesBruteForce) {
   std::vector<std::pair<int, int>> brute;
   auto box = [&](int k, Vec3& lo, Vec3& hi) {
     lo = hi = x.col(tets(0, k));
-    for (int i = 1; i < 4; ++i) lo = lo.cwiseMin(x.col(tets(i, k))), hi = hi.cwiseMax(x.col(tets(i, k)));
+    for (int i = 1; i < 4; ++i)
+      lo = lo.cwiseMin(x.col(tets(i, k))), hi = hi.cwiseMax(x.col(tets(i, k)));
     lo.array() -= 0.5 * margin;
     hi.array() += 0.5 * margin;
   };
@@ -41,7 +42,8 @@ TEST(BroadPhase, MatchesBruteForce) {
       Vec3 li, hi, lj, hj;
       box(i, li, hi);
       box(j, lj, hj);
-      if ((li.array() <= hj.array()).all() && (lj.array() <= hi.array()).all()) brute.emplace_back(i, j);
+      if ((li.array() <= hj.array()).all() && (lj.array() <= hi.array()).all())
+        brute.emplace_back(i, j);
     }
   }
   ASSERT_GT(brute.size(), 10u);

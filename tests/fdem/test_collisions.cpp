@@ -19,10 +19,16 @@ TEST(Collisions, HeadOnIdenticalBallsConserveMomentumAndMirror) {
   const Material m = scenes::rubbery();
   const TetMesh left = scenes::translated(ball_mesh(r, 3), Vec3(-r - 0.002, 0, 0));
   WorldDef def;
-  def.bodies.push_back({.name = "left", .kind = BodyKind::deformable, .mesh = left, .material = m,
+  def.bodies.push_back({.name = "left",
+                        .kind = BodyKind::deformable,
+                        .mesh = left,
+                        .material = m,
                         .velocity = Vec3(v, 0, 0)});
-  def.bodies.push_back({.name = "right", .kind = BodyKind::deformable, .mesh = scenes::mirrored_x(left),
-                        .material = m, .velocity = Vec3(-v, 0, 0)});
+  def.bodies.push_back({.name = "right",
+                        .kind = BodyKind::deformable,
+                        .mesh = scenes::mirrored_x(left),
+                        .material = m,
+                        .velocity = Vec3(-v, 0, 0)});
   def.record_body = 0;
   World w = make_world(def);
   const double p_ball = w.bodies[0].mass * v;
@@ -46,7 +52,8 @@ TEST(Collisions, HeadOnIdenticalBallsConserveMomentumAndMirror) {
 // energy stays in vibration (restitution > 0.9).
 TEST(Collisions, ElasticImpactConservesEnergyAndRebounds) {
   const double r = 0.1, v = 1.0;
-  World w = make_world(scenes::ball_on_block(r, 4, v, BodyKind::deformable, scenes::rubbery(), 0.002));
+  World w =
+      make_world(scenes::ball_on_block(r, 4, v, BodyKind::deformable, scenes::rubbery(), 0.002));
   const scenes::Impact im = run_impact(w, 0.1);
   ASSERT_TRUE(w.failure.empty()) << w.failure;
   ASSERT_GT(im.peak_force, 0);
@@ -79,7 +86,8 @@ TEST(Collisions, RigidPolyhedronMatchesVeryStiffDeformable) {
 // A step far above the critical one makes elements invert; the world names body, element and
 // time and stops.
 TEST(Collisions, InvertedElementIsDetectedAndNamed) {
-  World w = make_world(scenes::ball_on_block(0.1, 3, 20.0, BodyKind::deformable, scenes::rubbery(), 0.0005));
+  World w = make_world(
+      scenes::ball_on_block(0.1, 3, 20.0, BodyKind::deformable, scenes::rubbery(), 0.0005));
   const double dt = 20 * critical_step(w).critical;
   for (int k = 0; k < 2000 && w.failure.empty(); ++k) step(w, dt);
   ASSERT_FALSE(w.failure.empty());

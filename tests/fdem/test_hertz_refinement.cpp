@@ -20,8 +20,10 @@ TEST(HertzRefinement, PeakForceAndDurationApproachHertz) {
   const double r = 0.1, v = 0.2;
   const Material m = scenes::rubbery();
   const scenes::Hertz h = scenes::hertz_sphere_on_rigid_plane(r, v, m);
-  std::printf("Hertz: peak %.4g N, duration %.4g s, overlap %.4g m\n", h.force, h.duration, h.overlap);
-  std::printf("%4s %7s %9s %9s %8s %8s %8s\n", "n", "tets", "h_m", "cpu_s", "err_F", "err_T", "drift");
+  std::printf("Hertz: peak %.4g N, duration %.4g s, overlap %.4g m\n", h.force, h.duration,
+              h.overlap);
+  std::printf("%4s %7s %9s %9s %8s %8s %8s\n", "n", "tets", "h_m", "cpu_s", "err_F", "err_T",
+              "drift");
   double err_f_last = 0, err_t_last = 0, err_f_previous = 1e300;
   for (int n : {6, 8, 10}) {
     const auto t0 = std::chrono::steady_clock::now();
@@ -33,8 +35,8 @@ TEST(HertzRefinement, PeakForceAndDurationApproachHertz) {
     err_t_last = im.duration / h.duration - 1;
     EXPECT_LT(std::abs(err_f_last), err_f_previous) << "n = " << n;
     err_f_previous = std::abs(err_f_last);
-    std::printf("%4d %7d %9.4f %9.3f %+8.3f %+8.3f %8.4f\n", n, w.elements[0].size(), 2 * r / n, cpu,
-                err_f_last, err_t_last, im.drift);
+    std::printf("%4d %7d %9.4f %9.3f %+8.3f %+8.3f %8.4f\n", n, w.elements[0].size(), 2 * r / n,
+                cpu, err_f_last, err_t_last, im.drift);
   }
   EXPECT_LT(std::abs(err_f_last), 0.10);
   EXPECT_LT(std::abs(err_t_last), 0.10);

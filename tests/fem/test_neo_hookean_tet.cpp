@@ -84,13 +84,14 @@ TEST(NeoHookeanTet, SmallStrainIsLinearElasticity) {
 // Forces are minus the energy gradient: central differences of V₀Ψ at a finite strain, to the
 // truncation error O(h²) ≈ 1e-7 relative with h = 1e-6 m on unit-size elements.
 TEST(NeoHookeanTet, ForcesAreMinusEnergyGradient) {
-  const TetReference ref = tet_reference(Vec3(0, 0, 0), Vec3(1, 0, 0), Vec3(0, 1, 0), Vec3(0, 0, 1));
+  const TetReference ref =
+      tet_reference(Vec3(0, 0, 0), Vec3(1, 0, 0), Vec3(0, 1, 0), Vec3(0, 0, 1));
   const Lame l = lame_from(kE, kNu);
   double x[4][3] = {{0.05, -0.02, 0.01}, {1.1, 0.03, -0.05}, {0.02, 0.85, 0.1}, {-0.1, 0.05, 1.2}};
   auto energy_at = [&]() {
     double f[4][3] = {}, w = 0;
-    neo_hookean_tet_forces<true>(ref.dm_inv.data(), ref.volume, l, x[0], x[1], x[2], x[3], f[0], f[1],
-                                 f[2], f[3], &w);
+    neo_hookean_tet_forces<true>(ref.dm_inv.data(), ref.volume, l, x[0], x[1], x[2], x[3], f[0],
+                                 f[1], f[2], f[3], &w);
     return w;
   };
   double f[4][3] = {}, w = 0;
@@ -144,7 +145,8 @@ TEST(TetElements, ElementStepBoundsTheGlobalOne) {
   Eigen::VectorXd s(3 * n);
   for (int i = 0; i < 3 * n; ++i) s[i] = 1.0 / std::sqrt(mass[i / 3]);
   const Eigen::MatrixXd a = s.asDiagonal() * k * s.asDiagonal();
-  const double omega_global = std::sqrt(Eigen::SelfAdjointEigenSolver<Eigen::MatrixXd>(a).eigenvalues().maxCoeff());
+  const double omega_global =
+      std::sqrt(Eigen::SelfAdjointEigenSolver<Eigen::MatrixXd>(a).eigenvalues().maxCoeff());
   const ElementStep es = element_critical_step(e);
   EXPECT_LE(omega_global, es.omega_max * (1 + 1e-12));
   EXPECT_GT(omega_global, 0.5 * es.omega_max);

@@ -44,7 +44,8 @@ TEST(WaveSpeed, CompressionPulseTravelsAtBarSpeed) {
   // Displacement along the bar at the nodes of one edge line (y = z = 0), right of x0.
   std::vector<std::pair<double, double>> line;
   for (Eigen::Index i = 0; i < reference.nodes.cols(); ++i) {
-    if (reference.nodes(1, i) == 0 && reference.nodes(2, i) == 0 && reference.nodes(0, i) > x0 + 0.1) {
+    if (reference.nodes(1, i) == 0 && reference.nodes(2, i) == 0 &&
+        reference.nodes(0, i) > x0 + 0.1) {
       line.emplace_back(reference.nodes(0, i), w.x(0, i) - reference.nodes(0, i));
     }
   }

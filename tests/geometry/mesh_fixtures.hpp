@@ -1,4 +1,5 @@
-// Small meshes with known answers and files written into a temporary folder, for the geometry tests.
+// Small meshes with known answers and files written into a temporary folder, for the geometry
+// tests.
 #pragma once
 
 #include <cstdint>
@@ -19,15 +20,18 @@ inline SurfaceMesh box(const Eigen::Vector3d& lo, const Eigen::Vector3d& hi) {
   SurfaceMesh m;
   m.vertices.resize(3, 8);
   for (int i = 0; i < 8; ++i)
-    m.vertices.col(i) = Eigen::Vector3d(i & 1 ? hi.x() : lo.x(), i & 2 ? hi.y() : lo.y(), i & 4 ? hi.z() : lo.z());
+    m.vertices.col(i) =
+        Eigen::Vector3d(i & 1 ? hi.x() : lo.x(), i & 2 ? hi.y() : lo.y(), i & 4 ? hi.z() : lo.z());
   m.faces.resize(3, 12);
   m.faces << 0, 0, 4, 4, 0, 0, 2, 2, 0, 0, 1, 1,  //
-      2, 3, 5, 7, 1, 5, 6, 7, 4, 6, 3, 7,          //
+      2, 3, 5, 7, 1, 5, 6, 7, 4, 6, 3, 7,         //
       3, 1, 7, 6, 5, 4, 7, 3, 6, 2, 7, 5;
   return m;
 }
 
-inline SurfaceMesh unit_cube() { return box(Eigen::Vector3d::Zero(), Eigen::Vector3d::Ones()); }
+inline SurfaceMesh unit_cube() {
+  return box(Eigen::Vector3d::Zero(), Eigen::Vector3d::Ones());
+}
 
 inline SurfaceMesh flipped(SurfaceMesh m) {
   m.faces.row(1).swap(m.faces.row(2));
@@ -53,7 +57,8 @@ inline SurfaceMesh merged(const SurfaceMesh& a, const SurfaceMesh& b) {
 struct TempDir {
   std::filesystem::path path;
   explicit TempDir(const std::string& name)
-      : path(std::filesystem::temp_directory_path() / ("asperity-geometry-" + name + "-" + std::to_string(::getpid()))) {
+      : path(std::filesystem::temp_directory_path() /
+             ("asperity-geometry-" + name + "-" + std::to_string(::getpid()))) {
     std::filesystem::remove_all(path);
     std::filesystem::create_directories(path);
   }
@@ -66,14 +71,17 @@ inline void write_text(const std::filesystem::path& file, const std::string& tex
 }
 
 inline std::string off_text(const SurfaceMesh& m) {
-  std::string s = "OFF\n" + std::to_string(m.vertices.cols()) + " " + std::to_string(m.faces.cols()) + " 0\n";
+  std::string s =
+      "OFF\n" + std::to_string(m.vertices.cols()) + " " + std::to_string(m.faces.cols()) + " 0\n";
   char buf[128];
   for (Eigen::Index i = 0; i < m.vertices.cols(); ++i) {
-    std::snprintf(buf, sizeof buf, "%.17g %.17g %.17g\n", m.vertices(0, i), m.vertices(1, i), m.vertices(2, i));
+    std::snprintf(buf, sizeof buf, "%.17g %.17g %.17g\n", m.vertices(0, i), m.vertices(1, i),
+                  m.vertices(2, i));
     s += buf;
   }
   for (Eigen::Index i = 0; i < m.faces.cols(); ++i)
-    s += "3 " + std::to_string(m.faces(0, i)) + " " + std::to_string(m.faces(1, i)) + " " + std::to_string(m.faces(2, i)) + "\n";
+    s += "3 " + std::to_string(m.faces(0, i)) + " " + std::to_string(m.faces(1, i)) + " " +
+         std::to_string(m.faces(2, i)) + "\n";
   return s;
 }
 
@@ -87,7 +95,8 @@ inline std::string binary_stl(const SurfaceMesh& m, long keep = -1) {
   for (long i = 0; i < count; ++i) {
     float rec[12] = {};
     for (int c = 0; c < 3; ++c)
-      for (int d = 0; d < 3; ++d) rec[3 + 3 * c + d] = static_cast<float>(m.vertices(d, m.faces(c, i)));
+      for (int d = 0; d < 3; ++d)
+        rec[3 + 3 * c + d] = static_cast<float>(m.vertices(d, m.faces(c, i)));
     s.append(reinterpret_cast<const char*>(rec), sizeof rec);
     s.append(2, '\0');
   }

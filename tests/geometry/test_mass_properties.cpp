@@ -16,7 +16,9 @@ namespace {
 // dozen double operations per face (ε ≈ 2e-16) and nothing else.
 constexpr double kExact = 1e-12;
 
-void expect_rel(double got, double want, double rel = kExact) { EXPECT_NEAR(got, want, rel * std::abs(want)) << got; }
+void expect_rel(double got, double want, double rel = kExact) {
+  EXPECT_NEAR(got, want, rel * std::abs(want)) << got;
+}
 
 TEST(MassProperties, UnitCube) {
   const MassProperties m = mass_properties(test::unit_cube());
@@ -60,7 +62,8 @@ SurfaceMesh oriented(SurfaceMesh m) {
   for (Eigen::Index i = 0; i < m.faces.cols(); ++i) {
     const Eigen::Vector3d a = m.vertices.col(m.faces(0, i)), b = m.vertices.col(m.faces(1, i)),
                           c = m.vertices.col(m.faces(2, i));
-    if (a.dot((b - a).cross(c - a)) < 0) std::swap(m.faces(1, i), m.faces(2, i));  // centred at 0: outward
+    if (a.dot((b - a).cross(c - a)) < 0)
+      std::swap(m.faces(1, i), m.faces(2, i));  // centred at 0: outward
   }
   return m;
 }
@@ -117,8 +120,8 @@ TEST(ShapeMetrics, CubeAsperityIsTheCornerAboveItsEllipsoid) {
   const SurfaceMesh cube = test::unit_cube();
   const MassProperties m = mass_properties(cube);
   expect_rel(max_asperity_height(cube, m), std::sqrt(3.0) / 2 - std::sqrt(5.0 / 12.0));
-  expect_rel(max_asperity_rel(cube, m),
-             (std::sqrt(3.0) / 2 - std::sqrt(5.0 / 12.0)) / std::cbrt(3.0 / (4.0 * std::numbers::pi)));
+  expect_rel(max_asperity_rel(cube, m), (std::sqrt(3.0) / 2 - std::sqrt(5.0 / 12.0)) /
+                                            std::cbrt(3.0 / (4.0 * std::numbers::pi)));
 }
 
 TEST(ShapeMetrics, SphereHasNoAsperityAndIdenticalMeshesNoChange) {

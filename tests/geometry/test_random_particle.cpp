@@ -13,7 +13,6 @@
 #include "geometry/shape_metrics.hpp"
 #include "geometry/splitmix64.hpp"
 
-
 namespace asperity::geometry {
 namespace {
 
@@ -28,7 +27,8 @@ TEST(SplitMix64, MatchesTheReferenceSequence) {
 TEST(RandomParticle, IsAValidSolidOfTheAskedSize) {
   for (std::uint64_t seed : {1ULL, 2ULL, 99ULL}) {
     SCOPED_TRACE(seed);
-    const ParticleDef def{.seed = seed, .size = 0.04, .angularity = 0.8, .roughness = 0.6, .faces = 20000};
+    const ParticleDef def{
+        .seed = seed, .size = 0.04, .angularity = 0.8, .roughness = 0.6, .faces = 20000};
     const SurfaceMesh m = random_particle(def);
     EXPECT_EQ(m.faces.cols(), 20480);  // 20 n², n = round(√1000) = 32
     EXPECT_EQ(particle_face_count(20000), 20480);
@@ -41,7 +41,8 @@ TEST(RandomParticle, IsAValidSolidOfTheAskedSize) {
 }
 
 TEST(RandomParticle, SameSeedSameParticleOtherSeedOther) {
-  const SurfaceMesh a = random_particle({.seed = 42}), b = random_particle({.seed = 42}), c = random_particle({.seed = 43});
+  const SurfaceMesh a = random_particle({.seed = 42}), b = random_particle({.seed = 42}),
+                    c = random_particle({.seed = 43});
   EXPECT_EQ(a.vertices, b.vertices);
   EXPECT_EQ(a.faces, b.faces);
   EXPECT_GT((a.vertices - c.vertices).norm(), 1e-3 * a.vertices.norm());
@@ -59,13 +60,15 @@ TEST(RandomParticle, FrozenCoordinatesForSeed1) {
 TEST(RandomParticle, ParametersControlTheShape) {
   // Elongation and flatness of the base ellipsoid show in the measured (inertia) ones; the
   // low-order waves and cuts perturb them by some percent.
-  const MassProperties slim = mass_properties(random_particle({.seed = 5, .elongation = 0.5, .flatness = 0.6, .angularity = 0, .roughness = 0}));
+  const MassProperties slim = mass_properties(random_particle(
+      {.seed = 5, .elongation = 0.5, .flatness = 0.6, .angularity = 0, .roughness = 0}));
   EXPECT_NEAR(slim.elongation, 0.5, 0.08);
   EXPECT_NEAR(slim.flatness, 0.6, 0.08);
   // Angular particles have higher asperities (corners above the ellipsoid) than smooth ones.
   const SurfaceMesh smooth = random_particle({.seed = 5, .angularity = 0, .roughness = 0});
   const SurfaceMesh angular = random_particle({.seed = 5, .angularity = 1, .roughness = 0});
-  EXPECT_LT(max_asperity_rel(smooth, mass_properties(smooth)), max_asperity_rel(angular, mass_properties(angular)));
+  EXPECT_LT(max_asperity_rel(smooth, mass_properties(smooth)),
+            max_asperity_rel(angular, mass_properties(angular)));
 }
 
 TEST(RandomParticle, RejectsOutOfRangeParameters) {

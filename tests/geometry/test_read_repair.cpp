@@ -15,7 +15,8 @@ namespace asperity::geometry {
 namespace {
 
 // Loads FILE and returns the InputError message, or "" when it loads.
-std::string load_error(const std::filesystem::path& file, MeshLog* log = nullptr, double scale = 1.0) {
+std::string load_error(const std::filesystem::path& file, MeshLog* log = nullptr,
+                       double scale = 1.0) {
   MeshLog local;
   try {
     load_surface_mesh(file, {.scale = scale}, log ? *log : local);
@@ -37,7 +38,8 @@ TEST(ReadMesh, EveryFormatGivesTheCube) {
     ascii_stl += "facet normal 0 0 0\nouter loop\n";
     for (int c = 0; c < 3; ++c) {
       const Eigen::Vector3d p = cube.vertices.col(cube.faces(c, i));
-      ascii_stl += "vertex " + std::to_string(p.x()) + " " + std::to_string(p.y()) + " " + std::to_string(p.z()) + "\n";
+      ascii_stl += "vertex " + std::to_string(p.x()) + " " + std::to_string(p.y()) + " " +
+                   std::to_string(p.z()) + "\n";
     }
     ascii_stl += "endloop\nendfacet\n";
   }
@@ -46,27 +48,32 @@ TEST(ReadMesh, EveryFormatGivesTheCube) {
   // OBJ with quads (fan-triangulated on reading), 1-based indices.
   obj = "# cube\n";
   for (Eigen::Index v = 0; v < 8; ++v)
-    obj += "v " + std::to_string(cube.vertices(0, v)) + " " + std::to_string(cube.vertices(1, v)) + " " +
-           std::to_string(cube.vertices(2, v)) + "\n";
+    obj += "v " + std::to_string(cube.vertices(0, v)) + " " + std::to_string(cube.vertices(1, v)) +
+           " " + std::to_string(cube.vertices(2, v)) + "\n";
   obj += "f 1 3 4 2\nf 5 6 8 7\nf 1 2 6 5\nf 3 7 8 4\nf 1 5 7 3\nf 2 4 8 6\n";
   test::write_text(dir / "cube.obj", obj);
-  ply = "ply\nformat ascii 1.0\nelement vertex 8\nproperty float x\nproperty float y\nproperty float z\n"
-        "element face 12\nproperty list uchar int vertex_indices\nend_header\n";
+  ply =
+      "ply\nformat ascii 1.0\nelement vertex 8\nproperty float x\nproperty float y\nproperty float "
+      "z\n"
+      "element face 12\nproperty list uchar int vertex_indices\nend_header\n";
   std::string body = test::off_text(cube);
   body = body.substr(body.find('\n', 4) + 1);  // the OFF body is the PLY body
   test::write_text(dir / "cube.ply", ply + body);
   // Binary little-endian PLY.
-  std::string bply = "ply\nformat binary_little_endian 1.0\nelement vertex 8\nproperty double x\n"
-                     "property double y\nproperty double z\nelement face 12\n"
-                     "property list uchar int vertex_indices\nend_header\n";
-  for (Eigen::Index v = 0; v < 8; ++v) bply.append(reinterpret_cast<const char*>(cube.vertices.col(v).data()), 24);
+  std::string bply =
+      "ply\nformat binary_little_endian 1.0\nelement vertex 8\nproperty double x\n"
+      "property double y\nproperty double z\nelement face 12\n"
+      "property list uchar int vertex_indices\nend_header\n";
+  for (Eigen::Index v = 0; v < 8; ++v)
+    bply.append(reinterpret_cast<const char*>(cube.vertices.col(v).data()), 24);
   for (Eigen::Index i = 0; i < 12; ++i) {
     bply += '\3';
     bply.append(reinterpret_cast<const char*>(cube.faces.col(i).data()), 12);
   }
   test::write_text(dir / "cube_bin.ply", bply);
 
-  for (const char* name : {"cube.off", "cube_bin.stl", "cube_ascii.STL", "cube.obj", "cube.ply", "cube_bin.ply"}) {
+  for (const char* name :
+       {"cube.off", "cube_bin.stl", "cube_ascii.STL", "cube.obj", "cube.ply", "cube_bin.ply"}) {
     SCOPED_TRACE(name);
     MeshLog log;
     const SurfaceMesh m = load_surface_mesh(dir / name, {.scale = 1e-3}, log);
@@ -97,22 +104,28 @@ TEST(ReadMesh, UnknownExtension) {
   test::TempDir dir("ext");
   test::write_text(dir / "cube.xyz", test::off_text(test::unit_cube()));
   const std::string e = load_error(dir / "cube.xyz");
-  EXPECT_HAS(e, "unknown mesh format \".xyz\" (expected .stl, .obj, .ply or .off; the content looks like OFF)");
+  EXPECT_HAS(e,
+             "unknown mesh format \".xyz\" (expected .stl, .obj, .ply or .off; the content looks "
+             "like OFF)");
 }
 
 TEST(ReadMesh, WrongExtension) {
   test::TempDir dir("wrongext");
   test::write_text(dir / "cube.ply", test::off_text(test::unit_cube()));
-  EXPECT_HAS(load_error(dir / "cube.ply"), "not a valid PLY file: the PLY reader failed (the content looks like OFF; wrong extension?)");
+  EXPECT_HAS(
+      load_error(dir / "cube.ply"),
+      "not a valid PLY file: the PLY reader failed (the content looks like OFF; wrong extension?)");
 }
 
 TEST(ReadMesh, TruncatedBinaryStl) {
   test::TempDir dir("truncated");
   test::write_text(dir / "x.stl", test::binary_stl(test::unit_cube(), 7));
   EXPECT_HAS(load_error(dir / "x.stl"),
-             "truncated binary STL: header declares 12 triangles (684 bytes) but the file has 434 bytes (7 whole triangles)");
+             "truncated binary STL: header declares 12 triangles (684 bytes) but the file has 434 "
+             "bytes (7 whole triangles)");
   test::write_text(dir / "short.stl", std::string(40, '\1'));
-  EXPECT_HAS(load_error(dir / "short.stl"), "truncated binary STL: 40 bytes, shorter than the 84-byte header");
+  EXPECT_HAS(load_error(dir / "short.stl"),
+             "truncated binary STL: 40 bytes, shorter than the 84-byte header");
 }
 
 TEST(ReadMesh, NanAndInfiniteCoordinates) {
@@ -135,23 +148,28 @@ TEST(RepairMesh, OpenMesh) {
   SurfaceMesh open = cube;
   open.faces = cube.faces.leftCols(11);  // one triangle missing: a hole with 3 border edges
   test::write_text(dir / "x.off", test::off_text(open));
-  EXPECT_EQ(load_error(dir / "x.off"), (dir / "x.off").string() + ": open mesh: 3 border edges in 1 hole");
+  EXPECT_EQ(load_error(dir / "x.off"),
+            (dir / "x.off").string() + ": open mesh: 3 border edges in 1 hole");
 }
 
 TEST(RepairMesh, NonManifoldEdge) {
   test::TempDir dir("nmedge");
   // Two cubes sharing one edge: x = 1, y = 1 is the edge (1,1,z) of both.
-  const SurfaceMesh two = test::merged(test::unit_cube(), test::translated(test::unit_cube(), {1, 1, 0}));
+  const SurfaceMesh two =
+      test::merged(test::unit_cube(), test::translated(test::unit_cube(), {1, 1, 0}));
   test::write_text(dir / "x.off", test::off_text(two));
   // Duplicate vertices merge first (2 shared corners), then the shared edge has 4 faces.
-  EXPECT_HAS(load_error(dir / "x.off"), "non-manifold edge: 1 edge is shared by more than two faces");
+  EXPECT_HAS(load_error(dir / "x.off"),
+             "non-manifold edge: 1 edge is shared by more than two faces");
 }
 
 TEST(RepairMesh, NonManifoldVertex) {
   test::TempDir dir("nmvertex");
-  const SurfaceMesh two = test::merged(test::unit_cube(), test::translated(test::unit_cube(), {1, 1, 1}));
+  const SurfaceMesh two =
+      test::merged(test::unit_cube(), test::translated(test::unit_cube(), {1, 1, 1}));
   test::write_text(dir / "x.off", test::off_text(two));
-  EXPECT_HAS(load_error(dir / "x.off"), "non-manifold vertex: at 1 vertex separate sheets of faces touch");
+  EXPECT_HAS(load_error(dir / "x.off"),
+             "non-manifold vertex: at 1 vertex separate sheets of faces touch");
 }
 
 TEST(RepairMesh, InvertedMeshIsFlippedAndRecorded) {
@@ -215,8 +233,11 @@ TEST(RepairMesh, TinyShellIsDroppedWithAWarningAndALargeOneRefused) {
   EXPECT_HAS(log.warnings[0], "dropped a tiny shell of 12 faces (volume 0.1% of the main shell)");
   EXPECT_EQ(log.repairs, log.warnings);
 
-  test::write_text(dir / "two.off", test::off_text(test::merged(test::unit_cube(), test::translated(test::unit_cube(), {3, 0, 0}))));
-  EXPECT_HAS(load_error(dir / "two.off"), "several shells: 2 separate closed surfaces, 1 of them larger than 1% of the largest");
+  test::write_text(dir / "two.off",
+                   test::off_text(test::merged(test::unit_cube(),
+                                               test::translated(test::unit_cube(), {3, 0, 0}))));
+  EXPECT_HAS(load_error(dir / "two.off"),
+             "several shells: 2 separate closed surfaces, 1 of them larger than 1% of the largest");
 }
 
 TEST(RepairMesh, SelfIntersection) {
@@ -237,7 +258,8 @@ TEST(RepairMesh, ZeroVolume) {
   flat.faces.resize(3, 4);
   flat.faces << 0, 0, 0, 1, 2, 1, 3, 2, 1, 3, 2, 3;
   test::write_text(dir / "x.off", test::off_text(flat));
-  EXPECT_HAS(load_error(dir / "x.off"), "zero volume (0 m^3 inside a 1 m bounding box): a flat or collapsed surface");
+  EXPECT_HAS(load_error(dir / "x.off"),
+             "zero volume (0 m^3 inside a 1 m bounding box): a flat or collapsed surface");
 }
 
 TEST(CheckMesh, CountsWithoutRepairing) {

@@ -21,9 +21,9 @@ const fs::path kScans = ASPERITY_SCANS_DIR;
 
 struct Scan {
   const char* file;
-  double scale;     // E34 is in millimetres (SOURCE.md)
-  long faces;       // SOURCE.md table
-  double volume;    // m³ after scaling
+  double scale;      // E34 is in millimetres (SOURCE.md)
+  long faces;        // SOURCE.md table
+  double volume;     // m³ after scaling
   double tolerance;  // relative, with its reason below
 };
 
@@ -79,7 +79,9 @@ TEST(Scans, A13NonManifoldEdgesAreRefused) {
     FAIL() << "A13 should be refused";
   } catch (const InputError& e) {
     // SOURCE.md: 3 non-manifold edges and 2 shells, on purpose.
-    EXPECT_EQ(std::string(e.what()).rfind(f.string() + ": non-manifold edge: 3 edges are shared by more than two faces", 0), 0u)
+    EXPECT_EQ(std::string(e.what()).rfind(
+                  f.string() + ": non-manifold edge: 3 edges are shared by more than two faces", 0),
+              0u)
         << e.what();
   }
 }
@@ -94,7 +96,8 @@ TEST(Scans, A0SelfIntersectionIsRefused) {
     load_surface_mesh(f, {.scale = 1e-3}, log);
     FAIL() << "A0 should be refused";
   } catch (const InputError& e) {
-    EXPECT_EQ(std::string(e.what()), f.string() + ": self-intersecting surface: 3 pairs of faces intersect");
+    EXPECT_EQ(std::string(e.what()),
+              f.string() + ": self-intersecting surface: 3 pairs of faces intersect");
   }
 }
 

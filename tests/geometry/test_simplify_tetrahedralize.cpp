@@ -64,7 +64,8 @@ TEST(Simplify, ImpossibleTargetsAreInputErrors) {
   EXPECT_THROW(simplify_edge_collapse(particle(), 20482), InputError);
   EXPECT_NE(face_target_problem(101, 1000).find("faces must be even"), std::string::npos);
   EXPECT_EQ(face_target_problem(100, 1000), "");
-  EXPECT_EQ(simplify_edge_collapse(particle(), 20480).faces, particle().faces);  // N = input: unchanged
+  EXPECT_EQ(simplify_edge_collapse(particle(), 20480).faces,
+            particle().faces);  // N = input: unchanged
 }
 
 TEST(Tetrahedralize, CubeKeepsItsTwelveTriangles) {
@@ -86,14 +87,16 @@ TEST(Tetrahedralize, SimplifiedParticlesKeepTheirSurface) {
 TEST(Pipeline, FromMemoryReportsTheContractKeys) {
   const PreparedParticle p = prepare_particle(particle(), "seed 11", {.faces = 250});
   const nlohmann::json j = mesh_report(p);
-  for (const char* key : {"faces", "vertices", "closed", "volume", "centroid", "tets", "tet_volume", "min_dihedral_deg",
-                          "volume_change_rel", "centroid_shift_rel", "max_asperity_rel", "repairs", "smallest_edge",
-                          "inertia", "principal_moments", "equivalent_radius", "elongation", "flatness"}) {
+  for (const char* key : {"faces", "vertices", "closed", "volume", "centroid", "tets", "tet_volume",
+                          "min_dihedral_deg", "volume_change_rel", "centroid_shift_rel",
+                          "max_asperity_rel", "repairs", "smallest_edge", "inertia",
+                          "principal_moments", "equivalent_radius", "elongation", "flatness"}) {
     EXPECT_TRUE(j.contains(key)) << key;
   }
   EXPECT_EQ(j["faces"], 250);
   EXPECT_EQ(j["closed"], true);
-  EXPECT_NEAR(j["tet_volume"].get<double>(), j["volume"].get<double>(), kVolumeRoundOff * j["volume"].get<double>());
+  EXPECT_NEAR(j["tet_volume"].get<double>(), j["volume"].get<double>(),
+              kVolumeRoundOff * j["volume"].get<double>());
   // The generated particle is centred at the origin; simplification moves its centroid by a
   // fraction of the radius (here the order of the removed detail, well under 1 %).
   EXPECT_LT(j["centroid_shift_rel"].get<double>(), 1e-2);

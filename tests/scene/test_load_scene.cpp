@@ -62,7 +62,9 @@ std::string error_of(const std::string& name, const std::string& text) {
 
 }  // namespace
 
-TEST(LoadScene, TheGoodSceneLoadsAndRuns) { EXPECT_EQ(error_of("good", kGood), ""); }
+TEST(LoadScene, TheGoodSceneLoadsAndRuns) {
+  EXPECT_EQ(error_of("good", kGood), "");
+}
 
 TEST(LoadScene, SyntaxErrorGivesLineAndColumn) {
   const std::string msg = error_of("syntax", "{\n  \"name\": \"x\",\n  \"duration\" 0.1\n}");
@@ -95,21 +97,26 @@ TEST(LoadScene, PoissonOutsideItsRangeIsRefused) {
 }
 
 TEST(LoadScene, RestitutionOutsideItsRangeIsRefused) {
-  EXPECT_NE(error_of("e0", edit("\"restitution\": 0.9", "\"restitution\": 0")).find("restitution: must lie in (0, 1]"),
+  EXPECT_NE(error_of("e0", edit("\"restitution\": 0.9", "\"restitution\": 0"))
+                .find("restitution: must lie in (0, 1]"),
             std::string::npos);
-  EXPECT_NE(error_of("e2", edit("\"restitution\": 0.9", "\"restitution\": 1.5")).find("restitution: must lie in (0, 1]"),
+  EXPECT_NE(error_of("e2", edit("\"restitution\": 0.9", "\"restitution\": 1.5"))
+                .find("restitution: must lie in (0, 1]"),
             std::string::npos);
 }
 
 TEST(LoadScene, UnknownMaterialAndRecordedBodyAreNamed) {
-  EXPECT_NE(error_of("mat", edit("\"material\": \"glass\"", "\"material\": \"gold\"")).find("no material named \"gold\""),
+  EXPECT_NE(error_of("mat", edit("\"material\": \"glass\"", "\"material\": \"gold\""))
+                .find("no material named \"gold\""),
             std::string::npos);
-  EXPECT_NE(error_of("rec", edit("\"force_on\": \"ball\"", "\"force_on\": \"bal\"")).find("record.force_on: no body named"),
+  EXPECT_NE(error_of("rec", edit("\"force_on\": \"ball\"", "\"force_on\": \"bal\""))
+                .find("record.force_on: no body named"),
             std::string::npos);
 }
 
 TEST(LoadScene, BodyStartingInsideAWallIsRefused) {
-  const std::string msg = error_of("inside", edit("\"position\": [0, 0, 0.02]", "\"position\": [0, 0, 0.005]"));
+  const std::string msg =
+      error_of("inside", edit("\"position\": [0, 0, 0.02]", "\"position\": [0, 0, 0.005]"));
   EXPECT_NE(msg.find("starts inside \"floor\""), std::string::npos) << msg;
 }
 
@@ -117,12 +124,16 @@ TEST(LoadScene, UnsafeDtIsRefusedUnlessAllowed) {
   const std::string text = edit("\"dt\": \"auto\"", "\"dt\": 1e-3");
   const std::string msg = error_of("dt", text);
   EXPECT_NE(msg.find("dt: 0.001 s exceeds the predicted critical step"), std::string::npos) << msg;
-  EXPECT_EQ(error_of("dt-allowed", edit("\"dt\": \"auto\"", "\"dt\": 1e-3, \"allow_unsafe_dt\": true")), "");
+  EXPECT_EQ(
+      error_of("dt-allowed", edit("\"dt\": \"auto\"", "\"dt\": 1e-3, \"allow_unsafe_dt\": true")),
+      "");
 }
 
 TEST(LoadScene, UnknownLawAndShapeGetSuggestions) {
-  EXPECT_NE(error_of("law", edit("\"hertz-mindlin\"", "\"hertz-mindin\"")).find("did you mean \"hertz-mindlin\""),
+  EXPECT_NE(error_of("law", edit("\"hertz-mindlin\"", "\"hertz-mindin\""))
+                .find("did you mean \"hertz-mindlin\""),
             std::string::npos);
-  EXPECT_NE(error_of("shape", edit("\"type\": \"sphere\"", "\"type\": \"sphre\"")).find("did you mean \"sphere\""),
+  EXPECT_NE(error_of("shape", edit("\"type\": \"sphere\"", "\"type\": \"sphre\""))
+                .find("did you mean \"sphere\""),
             std::string::npos);
 }
