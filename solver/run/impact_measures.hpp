@@ -18,6 +18,7 @@ struct ImpactMeasures {
   double contact_duration = 0;     // s, time with s > 0
   double first_contact_time = -1;  // s, -1: none
   double max_overlap = 0;          // m
+  double last_separation = -1;     // s, when the latest contact ended; -1: none ended yet
   bool touching = false;
 
   void start(double t, const Vec3& f, double s) {
@@ -42,12 +43,19 @@ struct ImpactMeasures {
       if (first_contact_time < 0) first_contact_time = contact_start_;
       touching = true;
     } else if (touching && s <= 0) {
-      contact_duration += crossing(t, s) - contact_start_;
+      last_separation = crossing(t, s);
+      contact_duration += last_separation - contact_start_;
       touching = false;
     }
     t_prev_ = t;
     f_prev_ = fm;
     s_prev_ = s;
+  }
+
+  // True once a contact has ended and none has started for `window` s (record
+  // end_after_separation): the impact is over and the run may stop.
+  bool separated_for(double t, double window) const {
+    return !touching && last_separation >= 0 && t - last_separation >= window;
   }
 
   // Contact still open at the end counts up to `t_end`.

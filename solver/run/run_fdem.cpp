@@ -270,7 +270,7 @@ RunResult run_fdem(const scene::SceneDef& s, const RunOptions& options) {
   // 20 steps, and at every recorded row.
   const long check_every = std::min(20, std::max(1, s.record.every));
   Vec3 impulse = Vec3::Zero(), v_approach = Vec3::Zero(), v_separation = Vec3::Zero();
-  bool was_touching = im.touching, ended = false;
+  bool was_touching = im.touching, ended = false, ended_by_separation = false;
   for (long k = 1; k <= n_steps && !monitor.unstable(); ++k) {
     const bool row = k % s.record.every == 0 || k == n_steps;
     w.want_energy = row || k % check_every == 0;
@@ -290,12 +290,18 @@ RunResult run_fdem(const scene::SceneDef& s, const RunOptions& options) {
       ended = true;
     }
     was_touching = im.touching;
+    ended_by_separation =
+        s.record.end_after_separation && im.separated_for(w.time, *s.record.end_after_separation);
     if (w.want_energy) {
       const fdem::EnergyTerms e = fdem::energy(w);
       monitor.check_energy(w.time, balance(e), w.x.allFinite());
       if (row) push_rows(e);
     }
     monitor.progress(k);
+    if (ended_by_separation) {
+      if (!row) push_rows(fdem::energy(w));  // the last state, where the run stopped
+      break;
+    }
   }
   monitor.finish();
   const double cpu = cpu_seconds() - cpu0;
@@ -337,6 +343,7 @@ RunResult run_fdem(const scene::SceneDef& s, const RunOptions& options) {
   j["friction"] = w.friction;
   j["steps"] = w.steps;
   j["simulated_time"] = w.time;
+  j["ended_by"] = ended_by_separation ? "separation" : "duration";
   j["cpu_seconds"] = cpu;
   j["wall_seconds"] = wall;
   j["profile"] = {{"broad_phase", w.profile.broad_phase},

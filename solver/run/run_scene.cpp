@@ -219,10 +219,13 @@ RunResult run_scene(const scene::SceneDef& s, const RunOptions& options) {
   push_rows(e0);
   // Energy is checked every step for small scenes, else every `every` steps (it costs O(N)).
   const long check_every = w.size() <= 256 ? 1 : std::max(1, s.record.every);
+  bool ended_by_separation = false;
   for (long k = 1; k <= n_steps && !monitor.unstable(); ++k) {
     dem::step(w, dt);
     im.add(w.time, w.record_force, w.record_overlap);
-    const bool row = k % s.record.every == 0 || k == n_steps;
+    ended_by_separation =
+        s.record.end_after_separation && im.separated_for(w.time, *s.record.end_after_separation);
+    const bool row = k % s.record.every == 0 || k == n_steps || ended_by_separation;
     if (row || k % check_every == 0) {
       const dem::EnergyTerms e = dem::energy(w);
       monitor.check_energy(w.time, balance(e), w.x.allFinite());
@@ -232,6 +235,7 @@ RunResult run_scene(const scene::SceneDef& s, const RunOptions& options) {
       monitor.flag("runaway overlap (a body passed through another) at t = " + fmt(w.time) + " s");
     }
     monitor.progress(k);
+    if (ended_by_separation) break;
   }
   monitor.finish();
   const double cpu = cpu_seconds() - cpu0;
@@ -293,6 +297,7 @@ RunResult run_scene(const scene::SceneDef& s, const RunOptions& options) {
   j["assumed_approach_speed"] = crit.approach_speed;
   j["steps"] = w.steps;
   j["simulated_time"] = w.time;
+  j["ended_by"] = ended_by_separation ? "separation" : "duration";
   j["cpu_seconds"] = cpu;
   j["wall_seconds"] = wall;
   j["profile"] = {{"broad_phase", per_tick * static_cast<double>(w.profile.broad_phase)},

@@ -178,7 +178,7 @@ SceneDef parse_scene(const io::Json& json, const std::filesystem::path& file,
 
   if (r.has("record")) {
     const JsonReader rec = r.child("record");
-    rec.only_keys({"force_on", "every"});
+    rec.only_keys({"force_on", "every", "end_after_separation"});
     const std::string who = rec.string("force_on");
     s.record.body = -1;
     for (std::size_t i = 0; i < s.bodies.size(); ++i) {
@@ -186,6 +186,9 @@ SceneDef parse_scene(const io::Json& json, const std::filesystem::path& file,
     }
     if (s.record.body < 0) rec.fail("force_on", "no body named \"" + who + "\"");
     if (rec.has("every")) s.record.every = static_cast<int>(rec.integer("every", 1, 1'000'000'000));
+    if (rec.has("end_after_separation")) {
+      s.record.end_after_separation = rec.positive("end_after_separation");
+    }
   } else {
     for (std::size_t i = 0; i < s.bodies.size() && s.record.body < 0; ++i) {
       if (!s.bodies[i].fixed) s.record.body = static_cast<int>(i);

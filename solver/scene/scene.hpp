@@ -57,6 +57,9 @@ struct ContactDef {
 struct RecordDef {
   int body = -1;  // index into SceneDef::bodies
   int every = 1;  // steps between rows of force.csv and energy.csv
+  // s; when set, the run ends once the recorded body's contact has ended and no new one has
+  // begun for this long (an impact study needs the pulse, not the rebound flight after it).
+  std::optional<double> end_after_separation;
 };
 
 struct SceneDef {

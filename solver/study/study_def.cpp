@@ -94,8 +94,8 @@ StudyDef load_study(const fs::path& file) {
   const JsonReader r(json, file, "");
   r.require_object();
   r.only_keys({"name", "description", "particles", "particle_size", "resolutions", "models",
-               "placements", "speed", "orientation", "gap", "duration", "gravity", "material",
-               "block_material", "rows", "jobs"});
+               "placements", "speed", "orientation", "gap", "duration", "end_after_separation",
+               "gravity", "material", "block_material", "rows", "jobs"});
   StudyDef s;
   s.file = file;
   s.name = r.has("name") ? r.string("name") : file.stem().string();
@@ -201,6 +201,12 @@ StudyDef load_study(const fs::path& file) {
   if (r.has("duration")) {
     const Json& d = r.value()["duration"];
     if (!(d.is_string() && d == "auto")) s.duration = r.in_range("duration", 0, 100, true, false);
+  }
+  if (r.has("end_after_separation")) {
+    const Json& d = r.value()["end_after_separation"];
+    s.end_after_separation = d.is_string() && d == "never"
+                                 ? std::optional<double>()
+                                 : r.in_range("end_after_separation", 0, 100, true, false);
   }
   if (r.has("gravity")) s.gravity = r.in_range("gravity", 0, 1000, false, false);
   const Material rock{

@@ -45,11 +45,14 @@ struct StudyDef {
   Vec3 orientation_deg = Vec3::Zero();  // else: rotations about x, then y, then z, degrees
   double gap = 1e-4;               // m: lowest point of the placed reference mesh above the block
   std::optional<double> duration;  // s; empty: "auto" (per particle, see study_run.hpp)
-  double gravity = 9.81;           // m/s², along −z
-  Material material;               // the particle's
-  Material block_material;         // the block's
-  int rows = 2000;                 // about this many force rows kept per case
-  int jobs = 0;                    // worker threads; 0: every core
+  // A case ends this many Hertz contact times of the equivalent sphere after its contact ended
+  // (scene record.end_after_separation); empty ("never"): it runs the whole duration.
+  std::optional<double> end_after_separation = 0.25;
+  double gravity = 9.81;    // m/s², along −z
+  Material material;        // the particle's
+  Material block_material;  // the block's
+  int rows = 2000;          // about this many force rows kept per case
+  int jobs = 0;             // worker threads; 0: every core
 };
 
 // Reads and validates STUDY.json; InputError "FILE: KEY: problem" for anything wrong.

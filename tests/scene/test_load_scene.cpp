@@ -137,3 +137,37 @@ TEST(LoadScene, UnknownLawAndShapeGetSuggestions) {
                 .find("did you mean \"sphere\""),
             std::string::npos);
 }
+
+TEST(LoadScene, EndAfterSeparationMustBePositive) {
+  EXPECT_NE(error_of("end0", edit("\"every\": 10", "\"every\": 10, \"end_after_separation\": 0"))
+                .find("record.end_after_separation: must be > 0"),
+            std::string::npos);
+}
+
+// Ending the run after the contact is over changes none of the impact's measures: the force is
+// zero after separation, so peak, impulse and duration must be the same numbers (to round-off
+// of the step count), while the run stops at separation + window instead of at `duration`.
+TEST(LoadScene, EndAfterSeparationKeepsTheImpactMeasures) {
+  // The ball starts 0.1 mm above the floor: contact at about 1e-4 s, over long before 0.01 s.
+  std::string near = edit("\"position\": [0, 0, 0.02]", "\"position\": [0, 0, 0.0101]");
+  const scene::SceneDef full = scene::load_scene(write_scene("end-full", near));
+  near.replace(near.find("\"every\": 10"), 11, "\"every\": 10, \"end_after_separation\": 1e-4");
+  const scene::SceneDef early = scene::load_scene(write_scene("end-early", near));
+  const run::RunResult a = run::run_scene(full, {.keep_rows = false});
+  const run::RunResult b = run::run_scene(early, {.keep_rows = false});
+  ASSERT_EQ(a.summary["ended_by"], "duration");
+  ASSERT_EQ(b.summary["ended_by"], "separation");
+  for (const char* key : {"peak_force", "impulse", "contact_duration", "first_contact_time"}) {
+    // Same steps up to the early end, and no force after separation: equal to 1e-12 relative.
+    EXPECT_NEAR(b.summary[key].get<double>(), a.summary[key].get<double>(),
+                1e-12 * std::abs(a.summary[key].get<double>()))
+        << key;
+  }
+  const double t_end = b.summary["simulated_time"].get<double>();
+  const double separation =
+      b.summary["first_contact_time"].get<double>() + b.summary["contact_duration"].get<double>();
+  const double dt = b.summary["dt"].get<double>();
+  // It stops within one step of separation + window, well before the 0.01 s duration.
+  EXPECT_NEAR(t_end, separation + 1e-4, dt);
+  EXPECT_LT(t_end, 0.01);
+}
