@@ -95,7 +95,7 @@ StudyDef load_study(const fs::path& file) {
   r.require_object();
   r.only_keys({"name", "description", "particles", "particle_size", "resolutions", "models",
                "placements", "speed", "orientation", "gap", "duration", "end_after_separation",
-               "gravity", "material", "block_material", "rows", "jobs"});
+               "penalty_alpha", "gravity", "material", "block_material", "rows", "jobs"});
   StudyDef s;
   s.file = file;
   s.name = r.has("name") ? r.string("name") : file.stem().string();
@@ -208,6 +208,7 @@ StudyDef load_study(const fs::path& file) {
                                  ? std::optional<double>()
                                  : r.in_range("end_after_separation", 0, 100, true, false);
   }
+  if (r.has("penalty_alpha")) s.penalty_alpha = r.in_range("penalty_alpha", 0, 1e6, true, false);
   if (r.has("gravity")) s.gravity = r.in_range("gravity", 0, 1000, false, false);
   const Material rock{
       .name = "particle", .density = 2650, .young = 5e10, .poisson = 0.25, .friction = 0};

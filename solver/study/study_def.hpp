@@ -48,6 +48,9 @@ struct StudyDef {
   // A case ends this many Hertz contact times of the equivalent sphere after its contact ended
   // (scene record.end_after_separation); empty ("never"): it runs the whole duration.
   std::optional<double> end_after_separation = 0.25;
+  // Munjiza penalty p = α·E of the particle for the fem and rigid cases; empty: the solver's
+  // default α (fdem/fdem_world.hpp).
+  std::optional<double> penalty_alpha;
   double gravity = 9.81;    // m/s², along −z
   Material material;        // the particle's
   Material block_material;  // the block's

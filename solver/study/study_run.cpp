@@ -279,6 +279,9 @@ OJson case_scene(const StudyDef& def, const ParticlePlan& pp, const CaseKey& c) 
           {{"type", "box"}, {"min", {-half, -half, -depth}}, {"max", {half, half, 0.0}}}}}}},
       {"contact", {{"law", c.model == ModelKind::sphere ? "hertz" : "potential"}}},
       {"record", {{"force_on", "particle"}, {"every", every}}}};
+  if (def.penalty_alpha && c.model != ModelKind::sphere) {
+    scene["contact"]["penalty"] = *def.penalty_alpha * def.material.young;
+  }
   if (def.end_after_separation && c.model != ModelKind::sphere) {
     scene["record"]["end_after_separation"] = *def.end_after_separation * pp.contact_time;
   }

@@ -101,6 +101,11 @@ for row in cases:
         # exact: the table writes the shortest decimal that reads back to the same double
         check(f"{row['particle']} {folder} {col} equals summary.json", float(row[col]) == float(s[key]),
               (row[col], s[key]))
+    # the study's penalty_alpha reaches the scene: p = 100 x E of the particle (50 GPa)
+    check(f"{row['particle']} {folder} penalty = 100 E", s["penalty"] == 100 * 5e10, s["penalty"])
+    # every case's contact ends well inside the window, so every case stops after separation
+    check(f"{row['particle']} {folder} ended by separation", s["ended_by"] == "separation",
+          s["ended_by"])
     if row["resolution"] == "250":  # the reference of this study: its own errors are 0
         check(f"{folder} reference error 0", float(row["peak_force_err"]) == 0.0)
 fits = tables.get("cpu_fit.csv", [])
