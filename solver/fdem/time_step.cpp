@@ -85,17 +85,43 @@ Polygon clip_positive(const std::array<Vec3, 3>& p, const std::array<double, 3>&
   return out;
 }
 
-// ∫ (d₊)² dA over triangle p, d linear with vertex values d: on each fan triangle of the
-// clipped polygon ∫ d² dA = A/6 (Σ dᵢ² + Σ_{i<j} dᵢdⱼ).
-double integral_positive_square(const std::array<Vec3, 3>& p, const std::array<double, 3>& d) {
-  const Polygon c = clip_positive(p, d);
-  double sum = 0;
-  for (int k = 1; k + 1 < c.n; ++k) {
-    const double a = 0.5 * (c.p[k] - c.p[0]).cross(c.p[k + 1] - c.p[0]).norm();
-    const double x = c.d[0], y = c.d[k], z = c.d[k + 1];
-    sum += a / 6 * (x * x + y * y + z * z + x * y + y * z + z * x);
+// ∫ f dV over the part of tetrahedron q where the linear function d ≥ 0, f linear with vertex
+// values f: each piece is a tetrahedron, where ∫ f dV = |V| × the mean of f at its corners. One
+// vertex in: the corner tetrahedron; three in: the whole minus the corner that is out; two in:
+// the wedge between the two cut triangles, three tetrahedra.
+double clipped_integral(const std::array<Vec3, 4>& q, const std::array<double, 4>& d,
+                        const std::array<double, 4>& f) {
+  auto tet = [](const Vec3& a, const Vec3& b, const Vec3& c, const Vec3& e, double fa, double fb,
+                double fc, double fe) {
+    return std::abs((b - a).cross(c - a).dot(e - a)) / 6 * 0.25 * (fa + fb + fc + fe);
+  };
+  int in[4], out[4], ni = 0, no = 0;
+  for (int i = 0; i < 4; ++i) (d[i] >= 0 ? in[ni++] : out[no++]) = i;
+  // Point on edge i–j where d = 0, and f there.
+  auto cut = [&](int i, int j, Vec3& x, double& fx) {
+    const double s = d[i] / (d[i] - d[j]);
+    x = q[i] + s * (q[j] - q[i]);
+    fx = f[i] + s * (f[j] - f[i]);
+  };
+  if (ni == 0) return 0;
+  if (ni == 4) return tet(q[0], q[1], q[2], q[3], f[0], f[1], f[2], f[3]);
+  if (ni == 1 || ni == 3) {
+    const bool whole = ni == 3;
+    const int a = whole ? out[0] : in[0];
+    const int* others = whole ? in : out;
+    Vec3 x[3];
+    double fx[3];
+    for (int k = 0; k < 3; ++k) cut(a, others[k], x[k], fx[k]);
+    const double corner = tet(q[a], x[0], x[1], x[2], f[a], fx[0], fx[1], fx[2]);
+    return whole ? tet(q[0], q[1], q[2], q[3], f[0], f[1], f[2], f[3]) - corner : corner;
   }
-  return sum;
+  const int a = in[0], b = in[1], c = out[0], e = out[1];
+  Vec3 ac, ae, bc, be;
+  double fac, fae, fbc, fbe;
+  cut(a, c, ac, fac), cut(a, e, ae, fae), cut(b, c, bc, fbc), cut(b, e, be, fbe);
+  // Prism (a, ac, ae) – (b, bc, be).
+  return tet(q[a], ac, ae, be, f[a], fac, fae, fbe) + tet(q[a], ac, bc, be, f[a], fac, fbc, fbe) +
+         tet(q[a], q[b], bc, be, f[a], f[b], fbc, fbe);
 }
 
 bool inside_triangle(const Vec3& q, const Vec3& a, const Vec3& b, const Vec3& c, const Vec3& n) {
@@ -202,48 +228,30 @@ ContactFaces rigid_contact_faces(const World& w, int rigid) {
     for (int i = 0; i < 3; ++i) flat = flat && w.x.col(w.face_nodes(i, f)).dot(n) <= z_target + tol;
     if (flat) target_faces.push_back(static_cast<int>(f));
   }
-  // Each face's own sub-tetrahedron height h = 3V/(4A) from its surface tetrahedron.
-  std::map<Key, int> owner;
+  // Stored-energy lower bound at penetration δ: p ∫ φ_a dV over the body's surface-adjacent
+  // tetrahedra beyond the target plane, φ_a linear on each of the four sub-tetrahedra (0 on the
+  // face, 1 at the centroid).
+  std::vector<std::array<Vec3, 4>> tets;
   for (Eigen::Index t = 0; t < w.surface_tets.cols(); ++t) {
     if (w.surface_tet_body[t] != rb.body) continue;
-    for (int skip = 0; skip < 4; ++skip) {
-      int m[3], j = 0;
-      for (int a = 0; a < 4; ++a) {
-        if (a != skip) m[j++] = w.surface_tets(a, t);
-      }
-      owner[sorted_key(m[0], m[1], m[2])] = static_cast<int>(t);
-    }
-  }
-  struct FaceData {
-    std::array<Vec3, 3> p;
-    std::array<double, 3> s;  // height above the support point along −n, m
-    double coefficient;       // p / (2 h), Pa/m
-  };
-  std::vector<FaceData> data;
-  for (const int f : all.faces) {
-    FaceData d{};
-    for (int i = 0; i < 3; ++i) {
-      d.p[i] = w.x.col(w.face_nodes(i, f));
-      d.s[i] = z_support - d.p[i].dot(n);
-    }
-    const auto it =
-        owner.find(sorted_key(w.face_nodes(0, f), w.face_nodes(1, f), w.face_nodes(2, f)));
-    if (it == owner.end()) return all;
-    Vec3 q[4];
-    for (int a = 0; a < 4; ++a) q[a] = w.x.col(w.surface_tets(a, it->second));
-    const double volume = std::abs((q[1] - q[0]).cross(q[2] - q[0]).dot(q[3] - q[0])) / 6;
-    const double area = 0.5 * (d.p[1] - d.p[0]).cross(d.p[2] - d.p[0]).norm();
-    if (!(volume > 0) || !(area > 0)) continue;
-    d.coefficient = w.penalty / (2 * 0.75 * volume / area);
-    data.push_back(d);
+    std::array<Vec3, 4> q;
+    for (int a = 0; a < 4; ++a) q[a] = w.x.col(w.surface_tets(a, t));
+    tets.push_back(q);
   }
   const double energy_in = 0.5 * rb.mass * v.squaredNorm();
   const double gn = std::max(0.0, g.dot(n));
   auto excess = [&](double delta) {  // stored-energy lower bound minus the energy available
     double u = 0;
-    for (const FaceData& d : data) {
-      u += d.coefficient *
-           integral_positive_square(d.p, {delta - d.s[0], delta - d.s[1], delta - d.s[2]});
+    for (const std::array<Vec3, 4>& q : tets) {
+      const Vec3 centroid = 0.25 * (q[0] + q[1] + q[2] + q[3]);
+      for (int m = 0; m < 4; ++m) {
+        std::array<Vec3, 4> sub = q;
+        sub[m] = centroid;
+        std::array<double, 4> d, f{0, 0, 0, 0};
+        f[m] = 1;
+        for (int i = 0; i < 4; ++i) d[i] = delta - (z_support - sub[i].dot(n));
+        u += w.penalty * clipped_integral(sub, d, f);
+      }
     }
     return u - energy_in - rb.mass * gn * (gap + delta);
   };

@@ -53,17 +53,17 @@ CriticalStep critical_step(const World& world);
 // n (its velocity v, with gravity g zero or along v: a drop or a throw onto a target), and the
 // fixed bodies lie ahead of it with a flat face normal to n under every point that can touch,
 // the body can penetrate that face by at most δ_max, the root of the energy balance
-//   Σ_f p/(2 h_f) ∫_f (δ − s(x))₊² dA = ½ m |v|² + m (g·n) (gap + δ),
-// s(x) the height of face point x above the support point (the body's extreme point along n),
-// gap the clearance to the target plane, h_f = 3V/(4A) the face's sub-tetrahedron height. The
-// left side is a lower bound on the stored penalty energy U = p ∫ (φ_a + φ_b) dV
-// (contact/munjiza_potential.hpp) at penetration δ: it keeps only this body's potential,
-// φ_a = depth/h_f in the column under each face (exact to first order in δ/h_f), so δ_max is an
-// upper bound. Assumptions: the body does not rotate appreciably during the impact (a rotation
-// is paid from the same energy but could bring other faces down) and the target stays flat over
-// the pressed patch; stability gate stability-rigid-particle-block checks the result against the
-// measured limit. Otherwise (other moving bodies, spin, gravity across v, no flat target face
-// ahead, or no root short of burying the body) every face counts.
+//   U_a(δ) = ½ m |v|² + m (g·n) (gap + δ),
+// gap the clearance from the support point (the body's extreme point along n) to the target
+// plane, U_a(δ) = p ∫ φ_a dV over the body's part beyond the plane after a translation δ + gap
+// along n: the body's own share of the stored penalty energy U = p ∫ (φ_a + φ_b) dV
+// (contact/munjiza_potential.hpp), computed exactly by clipping each sub-tetrahedron of the
+// surface-adjacent elements (φ_a linear there). U_a ≤ U and it grows with δ, so δ_max bounds the
+// penetration the energy allows. Assumptions: the body does not rotate appreciably during the
+// impact (a rotation is paid from the same energy but could bring other faces down) and the
+// target stays flat over the pressed patch; stability gate stability-rigid-particle-block checks
+// the result against the measured limit. Otherwise (other moving bodies, spin, gravity across v,
+// no flat target face ahead, or no root short of burying the body) every face counts.
 struct ContactFaces {
   std::vector<int> faces;      // the faces with a point within δ_max of the support point
   double depth = -1;           // m, δ_max, or < 0 for the fallback
