@@ -48,9 +48,9 @@ double exact_omega(const World& w, int body) {
 }
 
 // Rigour: the predicted step is never above 2/ω_exact of the model it bounds (1e-12: solver
-// round-off); sharpness: within 1.3× of it (the element split alone is within 1.03× on these
-// meshes with face springs, tests/fem/test_element_step.cpp; the margin covers the coarser
-// ball); and at least as large as the Weyl sum of separate element and contact bounds.
+// round-off); sharpness: within 1.1× of it (measured 1.015; the stiff face springs sit in one
+// element each, where the split bound is nearly exact, tests/fem/test_element_step.cpp); and at
+// least as large as the Weyl sum of separate element and contact bounds.
 TEST(CriticalStep, DeformableBoundHoldsForElementsAndFacesTogether) {
   for (const int cells : {2, 3}) {
     const World w = make_world(
@@ -64,7 +64,7 @@ TEST(CriticalStep, DeformableBoundHoldsForElementsAndFacesTogether) {
         "Weyl %.4g\n",
         cells, exact, c.critical, c.critical / exact, c.element, c.contact, weyl);
     EXPECT_LE(c.critical, exact * (1 + 1e-12));
-    EXPECT_GE(c.critical, exact / 1.3);
+    EXPECT_GE(c.critical, exact / 1.1);
     EXPECT_GE(c.critical, weyl * (1 - 1e-12));
   }
 }

@@ -65,7 +65,8 @@ TetMesh distorted_box(int n, double amount) {
     const bool interior = (p.array() > 1e-9).all() && (p.array() < 1 - 1e-9).all();
     if (!interior) continue;
     for (int c = 0; c < 3; ++c) {
-      const double r = std::sin(12.9898 * static_cast<double>(i + 1) + 78.233 * (c + 1)) * 43758.5453;
+      const double r =
+          std::sin(12.9898 * static_cast<double>(i + 1) + 78.233 * (c + 1)) * 43758.5453;
       m.nodes(c, i) += amount * h * (2 * (r - std::floor(r)) - 1);
     }
   }
@@ -85,8 +86,9 @@ std::vector<Case> meshes() {
 }
 
 // Rigour: the bound is never below the exact ω (1e-12: eigen-solver round-off). Sharpness:
-// within 1.5× of it on every mesh (the equal-share bound is up to 2–4× in ω on distorted
-// meshes); and never looser than the equal-share bound, which is one of the splits allowed.
+// within 1.5× of it on every mesh (measured 1.04–1.38, the distorted box the loosest; the
+// equal-share bound is 1.24–3.4× there); and never looser than the equal-share bound, which is
+// one of the splits allowed.
 TEST(ElementStep, SplitBoundIsRigorousAndSharp) {
   for (const Case& c : meshes()) {
     const TetElements e = make_tet_elements(c.mesh.nodes, c.mesh.tets, kE, kNu, kRho, 0, c.name);
@@ -103,7 +105,9 @@ TEST(ElementStep, SplitBoundIsRigorousAndSharp) {
 
 // A stiff spring on every boundary face (the penalty contact's consistent face matrix,
 // k/12 [[2,1,1],[1,2,1],[1,1,2]] ⊗ I on the face's nodes, grounded) is bounded by the same
-// split with the spring in its element; tighter than Weyl's sum of the two separate bounds.
+// split with the spring in its element, within 1.1× of the exact ω (measured ≤ 1.03: the stiff
+// face springs dominate and sit in one element each), and tighter than Weyl's sum of the two
+// separate bounds.
 TEST(ElementStep, FaceSpringsInTheirElementBoundTheCombinedSystem) {
   for (const Case& c : meshes()) {
     const TetElements e = make_tet_elements(c.mesh.nodes, c.mesh.tets, kE, kNu, kRho, 0, c.name);
@@ -148,7 +152,7 @@ TEST(ElementStep, FaceSpringsInTheirElementBoundTheCombinedSystem) {
     std::printf("%-40s with face springs: exact %.4g  split %.4g (%.3f)  Weyl %.4g (%.3f)\n",
                 c.name, exact, bound, bound / exact, weyl, weyl / exact);
     EXPECT_GE(bound, exact * (1 - 1e-12)) << c.name;
-    EXPECT_LE(bound, 1.5 * exact) << c.name;
+    EXPECT_LE(bound, 1.1 * exact) << c.name;
     EXPECT_LE(bound, weyl) << c.name;
   }
 }
