@@ -321,7 +321,6 @@ CriticalStep critical_step(const World& w) {
   }
   for (int r = 0; r < static_cast<int>(w.rigid.size()); ++r) {
     const ContactFaces faces = rigid_contact_faces(w, r);
-    out.rigid_faces += static_cast<int>(faces.faces.size());
     const double omega2 = rigid_omega2(w, w.rigid[r], faces);
     omega_c2 = std::max(omega_c2, omega2);
     out.critical = std::min(out.critical, damped_step(std::sqrt(omega2), 0));

@@ -14,7 +14,6 @@ struct CriticalStep {
   double critical = 0;       // s, the step of elements and contacts together (below)
   std::string limited_by;    // "element" or "contact", the smaller of the two parts
   std::string element_body;  // the body with the stiffest elements
-  int rigid_faces = 0;       // surface faces in the rigid bodies' contact bounds
 };
 
 // Contact model. Every surface face of a moving body, pressed into another body, adds a
