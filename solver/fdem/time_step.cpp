@@ -1,67 +1,331 @@
 // Predicted critical step of an FEM/DEM world (formulas in time_step.hpp).
 #include "fdem/time_step.hpp"
 
+#include <algorithm>
+#include <array>
 #include <cmath>
 #include <limits>
+#include <map>
+#include <utility>
 #include <vector>
 
 #include <Eigen/Eigenvalues>
 
 namespace asperity::fdem {
 
-CriticalStep critical_step(const World& w) {
-  CriticalStep out;
-  double omega_e = 0, xi = 0;
-  for (const fem::TetElements& e : w.elements) {
-    const fem::ElementStep s = fem::element_critical_step(e);
-    if (s.omega_max > omega_e) {
-      omega_e = s.omega_max;
-      xi = 0.5 * e.damping * s.omega_max;
-      out.element_body = w.bodies[w.node_body[e.tets(0, s.element)]].name;
+namespace {
+
+using Key = std::array<int, 3>;
+
+Key sorted_key(int a, int b, int c) {
+  Key k{a, b, c};
+  std::sort(k.begin(), k.end());
+  return k;
+}
+
+// Consistent face matrix weight of nodes i, j of a face (×k_f): 2/12 on the diagonal, 1/12 off.
+double face_weight(int i, int j) {
+  return (i == j ? 2.0 : 1.0) / 12.0;
+}
+
+int face_body(const World& w, int f) {
+  return w.node_body[w.face_nodes(0, f)];
+}
+
+// The penalty spring of every surface face of deformable body `body`, as extra stiffness of the
+// element that owns the face.
+std::vector<fem::ElementExtraStiffness> face_springs(const World& w, int body) {
+  const fem::TetElements& e = w.elements[w.bodies[body].elements];
+  std::map<Key, std::pair<int, int>> owner;  // face → (element, the local node left out)
+  for (int t = 0; t < e.size(); ++t) {
+    for (int skip = 0; skip < 4; ++skip) {
+      int n[3], j = 0;
+      for (int a = 0; a < 4; ++a) {
+        if (a != skip) n[j++] = e.tets(a, t);
+      }
+      owner[sorted_key(n[0], n[1], n[2])] = {t, skip};
     }
   }
+  std::vector<fem::ElementExtraStiffness> out;
+  for (Eigen::Index f = 0; f < w.face_nodes.cols(); ++f) {
+    if (face_body(w, static_cast<int>(f)) != body) continue;
+    const auto it =
+        owner.find(sorted_key(w.face_nodes(0, f), w.face_nodes(1, f), w.face_nodes(2, f)));
+    if (it == owner.end()) continue;  // make_world checked that every face has its element
+    const int t = it->second.first;
+    fem::ElementExtraStiffness x{.element = t, .k = Eigen::Matrix<double, 12, 12>::Zero()};
+    for (int a = 0; a < 4; ++a) {
+      for (int b = 0; b < 4; ++b) {
+        if (a == it->second.second || b == it->second.second) continue;
+        x.k.block<3, 3>(3 * a, 3 * b) = w.face_stiffness[f] * face_weight(a, b) * Mat3::Identity();
+      }
+    }
+    out.push_back(x);
+  }
+  return out;
+}
+
+// The part of triangle p where the linear function with vertex values d is ≥ 0 (up to four
+// corners, with the function's values there).
+struct Polygon {
+  Vec3 p[4];
+  double d[4];
+  int n = 0;
+};
+Polygon clip_positive(const std::array<Vec3, 3>& p, const std::array<double, 3>& d) {
+  Polygon out;
+  for (int i = 0; i < 3; ++i) {
+    const int j = (i + 1) % 3;
+    if (d[i] >= 0) out.p[out.n] = p[i], out.d[out.n++] = d[i];
+    if ((d[i] >= 0) != (d[j] >= 0)) {
+      const double s = d[i] / (d[i] - d[j]);
+      out.p[out.n] = p[i] + s * (p[j] - p[i]), out.d[out.n++] = 0;
+    }
+  }
+  return out;
+}
+
+// ∫ f dV over the part of tetrahedron q where the linear function d ≥ 0, f linear with vertex
+// values f: each piece is a tetrahedron, where ∫ f dV = |V| × the mean of f at its corners. One
+// vertex in: the corner tetrahedron; three in: the whole minus the corner that is out; two in:
+// the wedge between the two cut triangles, three tetrahedra.
+double clipped_integral(const std::array<Vec3, 4>& q, const std::array<double, 4>& d,
+                        const std::array<double, 4>& f) {
+  auto tet = [](const Vec3& a, const Vec3& b, const Vec3& c, const Vec3& e, double fa, double fb,
+                double fc, double fe) {
+    return std::abs((b - a).cross(c - a).dot(e - a)) / 6 * 0.25 * (fa + fb + fc + fe);
+  };
+  int in[4], out[4], ni = 0, no = 0;
+  for (int i = 0; i < 4; ++i) (d[i] >= 0 ? in[ni++] : out[no++]) = i;
+  // Point on edge i–j where d = 0, and f there.
+  auto cut = [&](int i, int j, Vec3& x, double& fx) {
+    const double s = d[i] / (d[i] - d[j]);
+    x = q[i] + s * (q[j] - q[i]);
+    fx = f[i] + s * (f[j] - f[i]);
+  };
+  if (ni == 0) return 0;
+  if (ni == 4) return tet(q[0], q[1], q[2], q[3], f[0], f[1], f[2], f[3]);
+  if (ni == 1 || ni == 3) {
+    const bool whole = ni == 3;
+    const int a = whole ? out[0] : in[0];
+    const int* others = whole ? in : out;
+    Vec3 x[3];
+    double fx[3];
+    for (int k = 0; k < 3; ++k) cut(a, others[k], x[k], fx[k]);
+    const double corner = tet(q[a], x[0], x[1], x[2], f[a], fx[0], fx[1], fx[2]);
+    return whole ? tet(q[0], q[1], q[2], q[3], f[0], f[1], f[2], f[3]) - corner : corner;
+  }
+  const int a = in[0], b = in[1], c = out[0], e = out[1];
+  Vec3 ac, ae, bc, be;
+  double fac, fae, fbc, fbe;
+  cut(a, c, ac, fac), cut(a, e, ae, fae), cut(b, c, bc, fbc), cut(b, e, be, fbe);
+  // Prism (a, ac, ae) – (b, bc, be).
+  return tet(q[a], ac, ae, be, f[a], fac, fae, fbe) + tet(q[a], ac, bc, be, f[a], fac, fbc, fbe) +
+         tet(q[a], q[b], bc, be, f[a], f[b], fbc, fbe);
+}
+
+bool inside_triangle(const Vec3& q, const Vec3& a, const Vec3& b, const Vec3& c, const Vec3& n) {
+  // Projected along n: q is inside when it is on the same side of all three edges.
+  const double s0 = n.dot((b - a).cross(q - a)), s1 = n.dot((c - b).cross(q - b)),
+               s2 = n.dot((a - c).cross(q - c));
+  const double tol = 1e-12 * (b - a).squaredNorm();
+  return (s0 >= -tol && s1 >= -tol && s2 >= -tol) || (s0 <= tol && s1 <= tol && s2 <= tol);
+}
+
+// G(x) = [I, −[r]×], r = x − c: the displacement at x under the rigid motion (t, θ).
+Eigen::Matrix<double, 3, 6> rigid_map(const Vec3& x, const Vec3& c) {
+  const Vec3 r = x - c;
+  Eigen::Matrix<double, 3, 6> g;
+  g << 1, 0, 0, 0, r.z(), -r.y(), 0, 1, 0, -r.z(), 0, r.x(), 0, 0, 1, r.y(), -r.x(), 0;
+  return g;
+}
+
+// K_r = Σ_f κ_f ∫_{P_f} G(x)ᵀ G(x) dA, κ_f = k_f / A_f the face's stiffness per area and P_f
+// the pressed part of the face (all of it in the fallback, where this is Σ G_fᵀ K_f G_f with the
+// consistent face matrix, since u(x) is linear over the face). G is linear in x, so the
+// edge-midpoint rule (exact for quadratics) integrates it exactly on each fan triangle.
+double rigid_omega2(const World& w, const RigidBody& rb, const ContactFaces& c) {
+  Eigen::Matrix<double, 6, 6> k = Eigen::Matrix<double, 6, 6>::Zero(),
+                              m = Eigen::Matrix<double, 6, 6>::Zero();
+  for (const int f : c.faces) {
+    std::array<Vec3, 3> p;
+    std::array<double, 3> d;
+    for (int i = 0; i < 3; ++i) {
+      p[i] = w.x.col(w.face_nodes(i, f));
+      d[i] = c.depth < 0 ? 1.0 : c.depth - (c.support - p[i].dot(c.normal));
+    }
+    const double area = 0.5 * (p[1] - p[0]).cross(p[2] - p[0]).norm();
+    if (!(area > 0)) continue;
+    const double kappa = w.face_stiffness[f] / area;
+    const Polygon poly = clip_positive(p, d);
+    for (int t = 1; t + 1 < poly.n; ++t) {
+      const Vec3 q[3] = {poly.p[0], poly.p[t], poly.p[t + 1]};
+      const double a = 0.5 * (q[1] - q[0]).cross(q[2] - q[0]).norm();
+      for (int e = 0; e < 3; ++e) {
+        const Eigen::Matrix<double, 3, 6> g = rigid_map(0.5 * (q[e] + q[(e + 1) % 3]), rb.centre);
+        k += kappa * a / 3 * g.transpose() * g;
+      }
+    }
+  }
+  const Mat3 rot = rb.orientation.toRotationMatrix();
+  m.topLeftCorner<3, 3>() = rb.mass * Mat3::Identity();
+  m.bottomRightCorner<3, 3>() = rot * rb.inertia_body * rot.transpose();
+  const Eigen::GeneralizedSelfAdjointEigenSolver<Eigen::Matrix<double, 6, 6>> es(
+      k, m, Eigen::EigenvaluesOnly);
+  return std::max(0.0, es.eigenvalues().maxCoeff());
+}
+
+double damped_step(double omega, double beta) {
+  if (!(omega > 0)) return std::numeric_limits<double>::infinity();
+  const double xi = 0.5 * beta * omega;
+  return 2.0 / omega * (std::sqrt(1 + xi * xi) - xi);
+}
+
+}  // namespace
+
+ContactFaces rigid_contact_faces(const World& w, int rigid) {
+  const RigidBody& rb = w.rigid[rigid];
+  ContactFaces all;
+  for (Eigen::Index f = 0; f < w.face_nodes.cols(); ++f) {
+    if (face_body(w, static_cast<int>(f)) == rb.body) all.faces.push_back(static_cast<int>(f));
+  }
+  for (std::size_t b = 0; b < w.bodies.size(); ++b) {
+    if (static_cast<int>(b) != rb.body && w.bodies[b].kind != BodyKind::fixed) return all;
+  }
+  const Vec3 v = rb.velocity, g = w.gravity;
+  if (rb.omega.norm() > 0) return all;
+  Vec3 n;
+  if (v.norm() > 0) {
+    n = v.normalized();
+    if (g.cross(n).norm() > 1e-9 * g.norm() || g.dot(n) < 0) return all;
+  } else if (g.norm() > 0) {
+    n = g.normalized();
+  } else {
+    return all;
+  }
+  const Body& body = w.bodies[rb.body];
+  double z_support = -std::numeric_limits<double>::infinity(), extent = 0;
+  for (int i = body.node_begin; i < body.node_end; ++i) {
+    z_support = std::max(z_support, w.x.col(i).dot(n));
+  }
+  for (int i = body.node_begin; i < body.node_end; ++i) {
+    extent = std::max(extent, z_support - w.x.col(i).dot(n));
+  }
+  // The target plane: the fixed nodes nearest along n, and the fixed faces lying in it.
+  double z_target = std::numeric_limits<double>::infinity();
+  for (int i = 0; i < w.node_count(); ++i) {
+    if (w.bodies[w.node_body[i]].kind == BodyKind::fixed) {
+      z_target = std::min(z_target, w.x.col(i).dot(n));
+    }
+  }
+  const double gap = z_target - z_support;
+  if (!(gap >= 0) || !(extent > 0)) return all;
+  const double tol = 1e-9 * extent;
+  std::vector<int> target_faces;
+  for (Eigen::Index f = 0; f < w.face_nodes.cols(); ++f) {
+    if (w.bodies[face_body(w, static_cast<int>(f))].kind != BodyKind::fixed) continue;
+    bool flat = true;
+    for (int i = 0; i < 3; ++i) flat = flat && w.x.col(w.face_nodes(i, f)).dot(n) <= z_target + tol;
+    if (flat) target_faces.push_back(static_cast<int>(f));
+  }
+  // Stored-energy lower bound at penetration δ: p ∫ φ_a dV over the body's surface-adjacent
+  // tetrahedra beyond the target plane, φ_a linear on each of the four sub-tetrahedra (0 on the
+  // face, 1 at the centroid).
+  std::vector<std::array<Vec3, 4>> tets;
+  for (Eigen::Index t = 0; t < w.surface_tets.cols(); ++t) {
+    if (w.surface_tet_body[t] != rb.body) continue;
+    std::array<Vec3, 4> q;
+    for (int a = 0; a < 4; ++a) q[a] = w.x.col(w.surface_tets(a, t));
+    tets.push_back(q);
+  }
+  const double energy_in = 0.5 * rb.mass * v.squaredNorm();
+  const double gn = std::max(0.0, g.dot(n));
+  auto excess = [&](double delta) {  // stored-energy lower bound minus the energy available
+    double u = 0;
+    for (const std::array<Vec3, 4>& q : tets) {
+      const Vec3 centroid = 0.25 * (q[0] + q[1] + q[2] + q[3]);
+      for (int m = 0; m < 4; ++m) {
+        std::array<Vec3, 4> sub = q;
+        sub[m] = centroid;
+        std::array<double, 4> d, f{0, 0, 0, 0};
+        f[m] = 1;
+        for (int i = 0; i < 4; ++i) d[i] = delta - (z_support - sub[i].dot(n));
+        u += w.penalty * clipped_integral(sub, d, f);
+      }
+    }
+    return u - energy_in - rb.mass * gn * (gap + delta);
+  };
+  double hi = 1e-9 * extent;
+  while (excess(hi) < 0) {
+    hi *= 2;
+    if (hi > extent) return all;  // no bound short of burying the body: count every face
+  }
+  double lo = 0;
+  for (int it = 0; it < 100 && hi - lo > 1e-12 * hi; ++it) {
+    const double mid = 0.5 * (lo + hi);
+    (excess(mid) < 0 ? lo : hi) = mid;
+  }
+  ContactFaces out;
+  out.depth = hi;
+  out.normal = n;
+  out.support = z_support;
+  for (const int f : all.faces) {
+    bool touches = false;
+    for (int i = 0; i < 3; ++i) {
+      const Vec3 p = w.x.col(w.face_nodes(i, f));
+      if (z_support - p.dot(n) > out.depth) continue;
+      touches = true;
+      // The patch that can touch must lie over the target's flat face.
+      bool over = false;
+      for (const int tf : target_faces) {
+        over =
+            over || inside_triangle(p, w.x.col(w.face_nodes(0, tf)), w.x.col(w.face_nodes(1, tf)),
+                                    w.x.col(w.face_nodes(2, tf)), n);
+      }
+      if (!over) return all;
+    }
+    if (touches) out.faces.push_back(f);
+  }
+  return out;
+}
+
+CriticalStep critical_step(const World& w) {
+  CriticalStep out;
+  const double inf = std::numeric_limits<double>::infinity();
+  out.element = out.contact = out.critical = inf;
   std::vector<double> k_row(w.node_count(), 0.0);
   for (Eigen::Index f = 0; f < w.face_nodes.cols(); ++f) {
     for (int i = 0; i < 3; ++i) k_row[w.face_nodes(i, f)] += w.face_stiffness[f] / 3.0;
   }
-  double omega_c2 = 0;
-  for (int i = 0; i < w.node_count(); ++i) {
-    if (w.mass[i] > 0 && w.bodies[w.node_body[i]].kind != BodyKind::rigid) {
-      omega_c2 = std::max(omega_c2, k_row[i] / w.mass[i]);
+  double omega_e_max = 0, omega_c2 = 0;
+  for (std::size_t b = 0; b < w.bodies.size(); ++b) {
+    const Body& body = w.bodies[b];
+    if (body.kind != BodyKind::deformable) continue;
+    const fem::TetElements& e = w.elements[body.elements];
+    const fem::ElementStep elem = fem::element_critical_step(e);
+    double gershgorin = 0;  // Σ (k_f/3) / m over the body's nodes
+    for (int i = body.node_begin; i < body.node_end; ++i) {
+      if (w.mass[i] > 0) gershgorin = std::max(gershgorin, k_row[i] / w.mass[i]);
     }
-  }
-  // Rigid bodies: the same node springs seen through the body's 6 DOF, u_i = t + θ × r_i, so
-  // K_r = Σ_i κ_i G_iᵀ G_i with G_i = [I, −[r_i]×] and κ_i the node's row sum above (the
-  // consistent face matrix is ≤ (k_f/3) I on each node); M_r = diag(m I, I_c). The largest root
-  // of det(K_r − ω² M_r) = 0 bounds the rigid body's contact frequency (rigid motion is a
-  // subspace of the nodes' motion, so the nodal bound holds too but is far more conservative).
-  for (const RigidBody& rb : w.rigid) {
-    const Body& b = w.bodies[rb.body];
-    Eigen::Matrix<double, 6, 6> k = Eigen::Matrix<double, 6, 6>::Zero(),
-                                m = Eigen::Matrix<double, 6, 6>::Zero();
-    for (int i = b.node_begin; i < b.node_end; ++i) {
-      Eigen::Matrix<double, 3, 6> g;
-      const Vec3 r = w.x.col(i) - rb.centre;
-      Mat3 rx;
-      rx << 0, -r.z(), r.y(), r.z(), 0, -r.x(), -r.y(), r.x(), 0;
-      g << Mat3::Identity(), -rx;
-      k += k_row[i] * g.transpose() * g;
+    const double weyl2 = elem.omega_max * elem.omega_max + gershgorin;
+    const fem::ElementStep both =
+        fem::element_critical_step(e, face_springs(w, static_cast<int>(b)));
+    const double omega = std::sqrt(std::min(weyl2, both.omega_max * both.omega_max));
+    if (elem.omega_max > omega_e_max) {
+      omega_e_max = elem.omega_max;
+      out.element_body = body.name;
     }
-    const Mat3 rot = rb.orientation.toRotationMatrix();
-    m.topLeftCorner<3, 3>() = rb.mass * Mat3::Identity();
-    m.bottomRightCorner<3, 3>() = rot * rb.inertia_body * rot.transpose();
-    const Eigen::GeneralizedSelfAdjointEigenSolver<Eigen::Matrix<double, 6, 6>> es(
-        k, m, Eigen::EigenvaluesOnly);
-    omega_c2 = std::max(omega_c2, es.eigenvalues().maxCoeff());
+    out.element = std::min(out.element, elem.dt);
+    omega_c2 = std::max(omega_c2, gershgorin);
+    out.critical = std::min(out.critical, damped_step(omega, e.damping));
   }
-  const double omega_c = std::sqrt(omega_c2);
-  const double inf = std::numeric_limits<double>::infinity();
-  out.element = omega_e > 0 ? 2.0 / omega_e * (std::sqrt(1 + xi * xi) - xi) : inf;
-  out.contact = omega_c > 0 ? 2.0 / omega_c : inf;
-  const double omega = std::sqrt(omega_e * omega_e + omega_c2);
-  // ξ scales with ω for stiffness-proportional damping; taken at the combined ω.
-  const double xi_all = omega_e > 0 ? xi * omega / omega_e : 0;
-  out.critical = omega > 0 ? 2.0 / omega * (std::sqrt(1 + xi_all * xi_all) - xi_all) : inf;
+  for (int r = 0; r < static_cast<int>(w.rigid.size()); ++r) {
+    const ContactFaces faces = rigid_contact_faces(w, r);
+    const double omega2 = rigid_omega2(w, w.rigid[r], faces);
+    omega_c2 = std::max(omega_c2, omega2);
+    out.critical = std::min(out.critical, damped_step(std::sqrt(omega2), 0));
+  }
+  if (omega_c2 > 0) out.contact = 2.0 / std::sqrt(omega_c2);
   out.limited_by = out.element <= out.contact ? "element" : "contact";
   return out;
 }
