@@ -133,6 +133,12 @@ TetMesh run_tetgen(const SurfaceMesh& surface, const Lifts& lifts, const TetOpti
     throw std::runtime_error("TetGen reordered or moved the surface vertices (switches " +
                              switches + ")");
   }
+  for (int k = 0; k < nl; ++k) {
+    if (tm.nodes.col(n + k) != lifts.apexes[k]) {
+      throw std::runtime_error("TetGen reordered or moved the lift apexes (switches " + switches +
+                               ")");
+    }
+  }
   tm.tets = Eigen::Map<const Eigen::Matrix4Xi>(out.tetrahedronlist, 4, out.numberoftetrahedra);
   for (Eigen::Index t = 0; t < tm.tets.cols(); ++t) {
     const Vec3 a = tm.nodes.col(tm.tets(0, t));
