@@ -1,11 +1,15 @@
-// TetGen call that keeps the surface triangles (issue 3, "Tetrahedralization"); the switches and
-// their reasons are in the header. TetGen is built as a library (TETLIBRARY): it throws an int.
+// TetGen call that keeps the surface triangles (issue 3, "Tetrahedralization"), and the interior
+// Steiner points that lift flat surface tetrahedra; the switches and their reasons are in the
+// header. TetGen is built as a library (TETLIBRARY): it throws an int.
 #define TETLIBRARY
 #include "geometry/tetrahedralize.hpp"
 
 #include <algorithm>
 #include <array>
+#include <cmath>
 #include <cstring>
+#include <limits>
+#include <numbers>
 #include <sstream>
 #include <stdexcept>
 #include <string>
@@ -18,6 +22,15 @@
 
 namespace asperity::geometry {
 namespace {
+
+constexpr int kFace[4][3] = {{1, 2, 3}, {0, 3, 2}, {0, 1, 3}, {0, 2, 1}};
+
+// Tetrahedra imposed on surface faces: lift k joins face `faces[k]` to interior point
+// `apexes[apex_of[k]]`; neighbouring faces may share an apex.
+struct Lifts {
+  std::vector<Vec3> apexes;
+  std::vector<int> faces, apex_of;
+};
 
 std::string tetgen_error(int code) {
   switch (code) {
@@ -38,17 +51,18 @@ std::string tetgen_error(int code) {
   }
 }
 
+std::array<int, 3> sorted(int a, int b, int c) {
+  std::array<int, 3> t{a, b, c};
+  std::sort(t.begin(), t.end());
+  return t;
+}
+
 // Faces of the tetrahedra that belong to one tetrahedron only, as sorted triples.
 std::vector<std::array<int, 3>> boundary_faces(const Eigen::Matrix4Xi& tets) {
-  static constexpr int kFace[4][3] = {{1, 2, 3}, {0, 3, 2}, {0, 1, 3}, {0, 2, 1}};
   std::vector<std::array<int, 3>> all;
   all.reserve(4 * static_cast<std::size_t>(tets.cols()));
   for (Eigen::Index t = 0; t < tets.cols(); ++t)
-    for (const auto& f : kFace) {
-      std::array<int, 3> tri{tets(f[0], t), tets(f[1], t), tets(f[2], t)};
-      std::sort(tri.begin(), tri.end());
-      all.push_back(tri);
-    }
+    for (const auto& f : kFace) all.push_back(sorted(tets(f[0], t), tets(f[1], t), tets(f[2], t)));
   std::sort(all.begin(), all.end());
   std::vector<std::array<int, 3>> once;
   for (std::size_t i = 0; i < all.size();) {
@@ -60,29 +74,45 @@ std::vector<std::array<int, 3>> boundary_faces(const Eigen::Matrix4Xi& tets) {
   return once;
 }
 
-}  // namespace
-
-TetMesh tetrahedralize(const SurfaceMesh& surface, const TetOptions& options) {
+// One TetGen run on the surface. Each lift adds its apex as an input point and the three
+// triangles from its face's edges to the apex as internal facets, which TetGen keeps (switch Y
+// applies to every facet): the tetrahedron (face, apex) is then one of the result's.
+TetMesh run_tetgen(const SurfaceMesh& surface, const Lifts& lifts, const TetOptions& options) {
   const int n = static_cast<int>(surface.vertices.cols());
   const int nf = static_cast<int>(surface.faces.cols());
+  const int nl = static_cast<int>(lifts.apexes.size());
+  // Walls: the triangles from each lifted face's edges to its apex, once each (two faces that
+  // share an edge and an apex share that wall).
+  std::vector<std::array<int, 3>> walls;
+  for (std::size_t k = 0; k < lifts.faces.size(); ++k) {
+    const auto t = surface.faces.col(lifts.faces[k]);
+    for (int e = 0; e < 3; ++e) walls.push_back(sorted(t[e], t[(e + 1) % 3], n + lifts.apex_of[k]));
+  }
+  std::sort(walls.begin(), walls.end());
+  walls.erase(std::unique(walls.begin(), walls.end()), walls.end());
+  const int nw = static_cast<int>(walls.size());
   tetgenio in, out;
   in.firstnumber = 0;
-  in.numberofpoints = n;
-  in.pointlist = new REAL[3 * static_cast<std::size_t>(n)];
+  in.numberofpoints = n + nl;
+  in.pointlist = new REAL[3 * static_cast<std::size_t>(n + nl)];
   std::memcpy(in.pointlist, surface.vertices.data(),
               sizeof(REAL) * 3 * static_cast<std::size_t>(n));
-  in.numberoffacets = nf;
-  in.facetlist = new tetgenio::facet[static_cast<std::size_t>(nf)];
-  for (int i = 0; i < nf; ++i) {
+  for (int k = 0; k < nl; ++k)
+    for (int d = 0; d < 3; ++d) in.pointlist[3 * (n + k) + d] = lifts.apexes[k](d);
+  in.numberoffacets = nf + nw;
+  in.facetlist = new tetgenio::facet[static_cast<std::size_t>(nf + nw)];
+  const auto set_facet = [&](int i, int a, int b, int c) {
     tetgenio::facet& f = in.facetlist[i];
     tetgenio::init(&f);
     f.numberofpolygons = 1;
     f.polygonlist = new tetgenio::polygon[1];
     tetgenio::init(&f.polygonlist[0]);
     f.polygonlist[0].numberofvertices = 3;
-    f.polygonlist[0].vertexlist =
-        new int[3]{surface.faces(0, i), surface.faces(1, i), surface.faces(2, i)};
-  }
+    f.polygonlist[0].vertexlist = new int[3]{a, b, c};
+  };
+  for (int i = 0; i < nf; ++i)
+    set_facet(i, surface.faces(0, i), surface.faces(1, i), surface.faces(2, i));
+  for (int k = 0; k < nw; ++k) set_facet(nf + k, walls[k][0], walls[k][1], walls[k][2]);
   std::ostringstream sw;
   sw << "pYzQ";
   if (options.radius_edge_ratio > 0) {
@@ -95,7 +125,7 @@ TetMesh tetrahedralize(const SurfaceMesh& surface, const TetOptions& options) {
   } catch (int code) {
     throw std::runtime_error("TetGen failed (switches " + switches + "): " + tetgen_error(code));
   }
-  ASPERITY_CHECK(out.numberofcorners == 4 && out.numberofpoints >= n);
+  ASPERITY_CHECK(out.numberofcorners == 4 && out.numberofpoints >= n + nl);
 
   TetMesh tm;
   tm.nodes = Eigen::Map<const Eigen::Matrix3Xd>(out.pointlist, 3, out.numberofpoints);
@@ -103,9 +133,15 @@ TetMesh tetrahedralize(const SurfaceMesh& surface, const TetOptions& options) {
     throw std::runtime_error("TetGen reordered or moved the surface vertices (switches " +
                              switches + ")");
   }
+  for (int k = 0; k < nl; ++k) {
+    if (tm.nodes.col(n + k) != lifts.apexes[k]) {
+      throw std::runtime_error("TetGen reordered or moved the lift apexes (switches " + switches +
+                               ")");
+    }
+  }
   tm.tets = Eigen::Map<const Eigen::Matrix4Xi>(out.tetrahedronlist, 4, out.numberoftetrahedra);
   for (Eigen::Index t = 0; t < tm.tets.cols(); ++t) {
-    const Eigen::Vector3d a = tm.nodes.col(tm.tets(0, t));
+    const Vec3 a = tm.nodes.col(tm.tets(0, t));
     const double six_v = (tm.nodes.col(tm.tets(1, t)) - a)
                              .cross(tm.nodes.col(tm.tets(2, t)) - a)
                              .dot(tm.nodes.col(tm.tets(3, t)) - a);
@@ -115,15 +151,330 @@ TetMesh tetrahedralize(const SurfaceMesh& surface, const TetOptions& options) {
 
   // The promise of switch Y, checked: the tetrahedra's boundary is the input triangles.
   std::vector<std::array<int, 3>> input(static_cast<std::size_t>(nf));
-  for (int i = 0; i < nf; ++i) {
-    input[i] = {surface.faces(0, i), surface.faces(1, i), surface.faces(2, i)};
-    std::sort(input[i].begin(), input[i].end());
-  }
+  for (int i = 0; i < nf; ++i)
+    input[i] = sorted(surface.faces(0, i), surface.faces(1, i), surface.faces(2, i));
   std::sort(input.begin(), input.end());
   if (boundary_faces(tm.tets) != input) {
     throw std::runtime_error("TetGen changed the surface triangles (switches " + switches + ")");
   }
   return tm;
+}
+
+// Whether the convex hulls of two small point sets (triangle or tetrahedron) have disjoint
+// interiors, by the separating axis theorem: for convex polyhedra it suffices to try the face
+// normals of each and the cross products of their edges (Gottschalk, Lin & Manocha 1996, OBBTree,
+// SIGGRAPH). Touching (overlap up to `tol` along the axis) counts as separated, so tetrahedra
+// sharing a face, an edge or a vertex pass.
+template <int NA, int NB>
+bool separated(const std::array<Vec3, NA>& a, const std::array<Vec3, NB>& b, double tol) {
+  const auto apart = [&](const Vec3& axis) {
+    const double len = axis.norm();
+    if (len < 1e-300) return false;
+    double amin = std::numeric_limits<double>::infinity(), amax = -amin, bmin = amin, bmax = -amin;
+    for (const Vec3& p : a) amin = std::min(amin, p.dot(axis)), amax = std::max(amax, p.dot(axis));
+    for (const Vec3& p : b) bmin = std::min(bmin, p.dot(axis)), bmax = std::max(bmax, p.dot(axis));
+    return amax <= bmin + tol * len || bmax <= amin + tol * len;
+  };
+  std::vector<Vec3> ea, eb;
+  for (int i = 0; i < NA; ++i)
+    for (int j = i + 1; j < NA; ++j) ea.push_back(a[j] - a[i]);
+  for (int i = 0; i < NB; ++i)
+    for (int j = i + 1; j < NB; ++j) eb.push_back(b[j] - b[i]);
+  // Faces: every three points (a triangle has one, a tetrahedron four).
+  for (int i = 0; i < NA; ++i)
+    for (int j = i + 1; j < NA; ++j)
+      for (int k = j + 1; k < NA; ++k)
+        if (apart((a[j] - a[i]).cross(a[k] - a[i]))) return true;
+  for (int i = 0; i < NB; ++i)
+    for (int j = i + 1; j < NB; ++j)
+      for (int k = j + 1; k < NB; ++k)
+        if (apart((b[j] - b[i]).cross(b[k] - b[i]))) return true;
+  for (const Vec3& u : ea)
+    for (const Vec3& v : eb)
+      if (apart(u.cross(v))) return true;
+  return false;
+}
+
+// Distance from p to triangle abc (closest point by region, Ericson 2005, §5.1.5).
+double point_triangle_distance(const Vec3& p, const Vec3& a, const Vec3& b, const Vec3& c) {
+  const Vec3 ab = b - a, ac = c - a, ap = p - a;
+  const double d1 = ab.dot(ap), d2 = ac.dot(ap);
+  if (d1 <= 0 && d2 <= 0) return ap.norm();
+  const Vec3 bp = p - b;
+  const double d3 = ab.dot(bp), d4 = ac.dot(bp);
+  if (d3 >= 0 && d4 <= d3) return bp.norm();
+  const double vc = d1 * d4 - d3 * d2;
+  if (vc <= 0 && d1 >= 0 && d3 <= 0) return (p - (a + ab * (d1 / (d1 - d3)))).norm();
+  const Vec3 cp = p - c;
+  const double d5 = ab.dot(cp), d6 = ac.dot(cp);
+  if (d6 >= 0 && d5 <= d6) return cp.norm();
+  const double vb = d5 * d2 - d1 * d6;
+  if (vb <= 0 && d2 >= 0 && d6 <= 0) return (p - (a + ac * (d2 / (d2 - d6)))).norm();
+  const double va = d3 * d6 - d5 * d4;
+  if (va <= 0 && (d4 - d3) >= 0 && (d5 - d6) >= 0)
+    return (p - (b + (c - b) * ((d4 - d3) / ((d4 - d3) + (d5 - d6))))).norm();
+  const double den = 1.0 / (va + vb + vc);
+  return (p - (a + ab * (vb * den) + ac * (vc * den))).norm();
+}
+
+}  // namespace
+
+std::vector<SurfaceTetHeight> surface_tet_heights(const TetMesh& mesh) {
+  std::vector<std::array<int, 3>> input(static_cast<std::size_t>(mesh.surface.cols()));
+  for (Eigen::Index i = 0; i < mesh.surface.cols(); ++i)
+    input[i] = sorted(mesh.surface(0, i), mesh.surface(1, i), mesh.surface(2, i));
+  std::vector<int> order(input.size());
+  for (std::size_t i = 0; i < order.size(); ++i) order[i] = static_cast<int>(i);
+  std::sort(order.begin(), order.end(), [&](int a, int b) { return input[a] < input[b]; });
+  std::vector<SurfaceTetHeight> out(input.size());
+  for (Eigen::Index t = 0; t < mesh.tets.cols(); ++t) {
+    Vec3 p[4];
+    for (int k = 0; k < 4; ++k) p[k] = mesh.nodes.col(mesh.tets(k, t));
+    const double six_v = (p[1] - p[0]).cross(p[2] - p[0]).dot(p[3] - p[0]);
+    double longest = 0;
+    for (int i = 0; i < 4; ++i)
+      for (int j = i + 1; j < 4; ++j) longest = std::max(longest, (p[i] - p[j]).norm());
+    for (int k = 0; k < 4; ++k) {
+      const auto& f = kFace[k];
+      const std::array<int, 3> key =
+          sorted(mesh.tets(f[0], t), mesh.tets(f[1], t), mesh.tets(f[2], t));
+      const auto it =
+          std::lower_bound(order.begin(), order.end(), key,
+                           [&](int a, const std::array<int, 3>& b) { return input[a] < b; });
+      if (it == order.end() || input[*it] != key) continue;
+      const double two_area = (p[f[1]] - p[f[0]]).cross(p[f[2]] - p[f[0]]).norm();
+      out[*it] = {.tet = static_cast<int>(t), .height = six_v / two_area, .longest_edge = longest};
+    }
+  }
+  return out;
+}
+
+StepScales step_scales(const TetMesh& mesh) {
+  StepScales out{.least_height = std::numeric_limits<double>::infinity()};
+  std::vector<double> volume(static_cast<std::size_t>(mesh.nodes.cols()), 0.0);
+  for (Eigen::Index t = 0; t < mesh.tets.cols(); ++t) {
+    std::array<Vec3, 4> p;
+    for (int k = 0; k < 4; ++k) p[k] = mesh.nodes.col(mesh.tets(k, t));
+    const double six_v = std::abs((p[1] - p[0]).cross(p[2] - p[0]).dot(p[3] - p[0]));
+    double largest_area2 = 0;
+    for (int i = 0; i < 4; ++i)
+      largest_area2 =
+          std::max(largest_area2,
+                   (p[(i + 2) % 4] - p[(i + 1) % 4]).cross(p[(i + 3) % 4] - p[(i + 1) % 4]).norm());
+    out.least_height = std::min(out.least_height, six_v / largest_area2);
+    for (int k = 0; k < 4; ++k) volume[mesh.tets(k, t)] += six_v / 6.0;
+  }
+  const std::vector<SurfaceTetHeight> h = surface_tet_heights(mesh);
+  std::vector<double> stiffness(volume.size(), 0.0);
+  for (Eigen::Index f = 0; f < mesh.surface.cols(); ++f) {
+    const Vec3 a = mesh.nodes.col(mesh.surface(0, f)), b = mesh.nodes.col(mesh.surface(1, f)),
+               c = mesh.nodes.col(mesh.surface(2, f));
+    const double area = 0.5 * (b - a).cross(c - a).norm();
+    for (int k = 0; k < 3; ++k) stiffness[mesh.surface(k, f)] += area / h[f].height;
+  }
+  for (std::size_t i = 0; i < volume.size(); ++i)
+    if (volume[i] > 0)
+      out.contact_frequency2 = std::max(out.contact_frequency2, stiffness[i] / volume[i]);
+  return out;
+}
+
+TetMesh tetrahedralize(const SurfaceMesh& surface, const TetOptions& options) {
+  TetMesh tm = run_tetgen(surface, {}, options);
+  if (options.min_surface_height_ratio <= 0) return tm;
+  const Eigen::Index nf = surface.faces.cols();
+  const auto corner = [&](Eigen::Index f, int k) {
+    return Vec3(surface.vertices.col(surface.faces(k, f)));
+  };
+  std::vector<std::vector<int>> vertex_faces(static_cast<std::size_t>(surface.vertices.cols()));
+  for (Eigen::Index f = 0; f < nf; ++f)
+    for (int k = 0; k < 3; ++k) vertex_faces[surface.faces(k, f)].push_back(static_cast<int>(f));
+  const auto height_ratio = [](const std::array<Vec3, 4>& p) {
+    double longest = 0;
+    for (int i = 0; i < 4; ++i)
+      for (int j = i + 1; j < 4; ++j) longest = std::max(longest, (p[i] - p[j]).norm());
+    const Vec3 normal = (p[1] - p[0]).cross(p[2] - p[0]);
+    return -(p[3] - p[0]).dot(normal) / normal.norm() / longest;  // apex below: inward
+  };
+  // Least height (3V over the largest face area) over the longest edge.
+  const auto least_height_ratio = [](const std::array<Vec3, 4>& p) {
+    double longest = 0, largest_area2 = 0;
+    for (int i = 0; i < 4; ++i) {
+      for (int j = i + 1; j < 4; ++j) longest = std::max(longest, (p[i] - p[j]).norm());
+      const Vec3 &a = p[(i + 1) % 4], &b = p[(i + 2) % 4], &c = p[(i + 3) % 4];
+      largest_area2 = std::max(largest_area2, (b - a).cross(c - a).norm());
+    }
+    return std::abs((p[1] - p[0]).cross(p[2] - p[0]).dot(p[3] - p[0])) / largest_area2 / longest;
+  };
+  const auto volume_ratio = [](const Vec3& a, const Vec3& b, const Vec3& c, const Vec3& d) {
+    double longest = 0;
+    const std::array<Vec3, 4> p{a, b, c, d};
+    for (int i = 0; i < 4; ++i)
+      for (int j = i + 1; j < 4; ++j) longest = std::max(longest, (p[i] - p[j]).norm());
+    return std::abs((b - a).cross(c - a).dot(d - a)) / 6.0 / std::pow(longest, 3);
+  };
+  Lifts lifts;
+  std::vector<std::array<Vec3, 4>> lifted_tets;
+  std::vector<int> apex_of_face(static_cast<std::size_t>(nf), -1);
+  std::vector<Vec3> banned;  // apex positions that made a thin tetrahedron
+  // Lifts face f if some apex passes: the imposed tetrahedron is high enough, overlaps neither
+  // the surface nor another imposed tetrahedron (touching is allowed), keeps its apex clear of
+  // the rest of the surface, and leaves no flat tetrahedron between its wall and a neighbour's.
+  const auto lift_face = [&](Eigen::Index f, const SurfaceTetHeight& hf) {
+    const Vec3 a = corner(f, 0), b = corner(f, 1), c = corner(f, 2);
+    const Vec3 n = (b - a).cross(c - a).normalized();
+    const double edge = std::max({(b - a).norm(), (c - b).norm(), (a - c).norm()});
+    const double tol = 1e-9 * edge;
+    // Candidates: the apexes of lifted faces around this one (a shared apex leaves no thin
+    // wedge between two apexes), then new points below the centroid.
+    std::vector<std::pair<int, Vec3>> candidates;
+    for (int k = 0; k < 3; ++k)
+      for (const int g : vertex_faces[surface.faces(k, f)])
+        if (apex_of_face[g] >= 0)
+          candidates.push_back({apex_of_face[g], lifts.apexes[apex_of_face[g]]});
+    std::sort(candidates.begin(), candidates.end(), [&](const auto& x, const auto& y) {
+      return height_ratio({a, b, c, x.second}) > height_ratio({a, b, c, y.second});
+    });
+    candidates.erase(std::unique(candidates.begin(), candidates.end(),
+                                 [](const auto& x, const auto& y) { return x.first == y.first; }),
+                     candidates.end());
+    for (const double scale : {1.0, 0.7, 0.5})
+      candidates.push_back({-1, (a + b + c) / 3.0 - scale * options.lift_depth * edge * n});
+    // First an apex that clears the bound with a margin; failing that, one that at least
+    // triples the face's height ratio (long thin faces on flat patches cannot reach the bound).
+    const double strict = 1.2 * options.min_surface_height_ratio;
+    for (const double need : {strict, std::min(strict, 3 * hf.height / hf.longest_edge)})
+      for (const auto& [apex_index, apex] : candidates) {
+        if (std::any_of(banned.begin(), banned.end(),
+                        [&](const Vec3& q) { return (q - apex).norm() <= tol; })) {
+          continue;
+        }
+        const std::array<Vec3, 4> tet{a, b, c, apex};
+        const double depth = -(apex - a).dot(n);
+        bool ok = height_ratio(tet) >= need;
+        for (Eigen::Index g = 0; g < nf && ok; ++g) {
+          if (g == f) continue;
+          const std::array<Vec3, 3> tri{corner(g, 0), corner(g, 1), corner(g, 2)};
+          ok = separated<4, 3>(tet, tri, tol) &&
+               point_triangle_distance(apex, tri[0], tri[1], tri[2]) >= 0.5 * depth;
+        }
+        for (std::size_t k = 0; k < lifted_tets.size() && ok; ++k) {
+          if (lifts.apex_of[k] == apex_index) continue;
+          ok = separated<4, 4>(tet, lifted_tets[k], tol) &&
+               (lifts.apexes[lifts.apex_of[k]] - apex).norm() >= options.lift_spacing * edge;
+          // A lifted face across an edge of this one: the tetrahedron (edge, both apexes)
+          // between the two walls must not be flat.
+          const auto other = surface.faces.col(lifts.faces[k]);
+          for (int e = 0; e < 3 && ok; ++e) {
+            const int u = surface.faces(e, f), v = surface.faces((e + 1) % 3, f);
+            if ((other.array() == u).any() && (other.array() == v).any()) {
+              ok = volume_ratio(surface.vertices.col(u), surface.vertices.col(v), apex,
+                                lifts.apexes[lifts.apex_of[k]]) >= options.min_wedge_volume_ratio;
+            }
+          }
+        }
+        if (ok) {
+          int k = apex_index;
+          if (k < 0) {
+            k = static_cast<int>(lifts.apexes.size());
+            lifts.apexes.push_back(apex);
+          }
+          lifts.faces.push_back(static_cast<int>(f));
+          lifts.apex_of.push_back(k);
+          lifted_tets.push_back(tet);
+          apex_of_face[f] = k;
+          return true;
+        }
+      }
+    return false;
+  };
+  const int nv = static_cast<int>(surface.vertices.cols());
+  const std::vector<SurfaceTetHeight> h0 = surface_tet_heights(tm);
+  // The mesh of the round with the largest predicted step, as a ratio to the mesh without lifts:
+  // the smaller of the element and contact step ratios (each a lower bound of the combined one).
+  const StepScales s0 = step_scales(tm);
+  TetMesh best = tm;
+  double best_gain = 1;
+  std::vector<bool> blamed;  // apexes of lifts that left an unliftable neighbour worse off
+  // Rounds of lifting, then rounds that only take thin-making apexes out (each takes one or
+  // more out, so they end, at the latest with the mesh of no lifts).
+  for (int round = 0;; ++round) {
+    // TetGen fills the space between walls and surface as it can; where that leaves a thin
+    // tetrahedron at an apex (its element step falls with its least height), the newest apex
+    // of that tetrahedron goes, and its position is not tried again.
+    std::vector<bool> drop(lifts.apexes.size(), false);
+    bool dropped = false;
+    for (std::size_t k = 0; k < blamed.size(); ++k) {
+      if (blamed[k]) drop[k] = dropped = true;
+    }
+    blamed.assign(lifts.apexes.size(), false);
+    for (Eigen::Index t = 0; t < tm.tets.cols(); ++t) {
+      int newest = -1;
+      std::array<Vec3, 4> p;
+      for (int k = 0; k < 4; ++k) {
+        const int node = tm.tets(k, t);
+        p[k] = tm.nodes.col(node);
+        if (node >= nv && node < nv + static_cast<int>(lifts.apexes.size()))
+          newest = std::max(newest, node - nv);
+      }
+      if (newest >= 0 && least_height_ratio(p) < options.min_apex_tet_height_ratio) {
+        dropped = dropped || !drop[newest];
+        drop[newest] = true;
+      }
+    }
+    if (dropped) {
+      Lifts kept;
+      std::vector<std::array<Vec3, 4>> kept_tets;
+      std::vector<int> index(lifts.apexes.size(), -1);
+      for (std::size_t k = 0; k < lifts.apexes.size(); ++k) {
+        if (drop[k]) {
+          banned.push_back(lifts.apexes[k]);
+        } else {
+          index[k] = static_cast<int>(kept.apexes.size());
+          kept.apexes.push_back(lifts.apexes[k]);
+        }
+      }
+      std::fill(apex_of_face.begin(), apex_of_face.end(), -1);
+      for (std::size_t k = 0; k < lifts.faces.size(); ++k) {
+        if (drop[lifts.apex_of[k]]) continue;
+        kept.faces.push_back(lifts.faces[k]);
+        kept.apex_of.push_back(index[lifts.apex_of[k]]);
+        kept_tets.push_back(lifted_tets[k]);
+        apex_of_face[lifts.faces[k]] = index[lifts.apex_of[k]];
+      }
+      lifts = std::move(kept);
+      lifted_tets = std::move(kept_tets);
+    }
+    const std::vector<SurfaceTetHeight> h = surface_tet_heights(tm);
+    bool added = false;
+    blamed.resize(lifts.apexes.size(), false);
+    for (Eigen::Index f = 0; f < nf; ++f) {
+      if (apex_of_face[f] >= 0 ||
+          h[f].height >= options.min_surface_height_ratio * h[f].longest_edge) {
+        continue;
+      }
+      if (round < options.max_lift_rounds && lift_face(f, h[f])) {
+        added = true;
+      } else {
+        // Not lifted, far below the bound and worse than without lifts: the walls around it are
+        // the cause, so the apexes of the lifted faces that touch it go.
+        const double now = h[f].height / h[f].longest_edge;
+        if (now < 0.5 * options.min_surface_height_ratio &&
+            now < h0[f].height / h0[f].longest_edge) {
+          for (int k = 0; k < 3; ++k)
+            for (const int g : vertex_faces[surface.faces(k, f)])
+              if (apex_of_face[g] >= 0 && apex_of_face[g] < static_cast<int>(blamed.size()))
+                blamed[apex_of_face[g]] = true;
+        }
+      }
+    }
+    if (!added && !dropped) break;
+    tm = run_tetgen(surface, lifts, options);
+    const StepScales sc = step_scales(tm);
+    const double gain = std::min(sc.least_height / s0.least_height,
+                                 std::sqrt(s0.contact_frequency2 / sc.contact_frequency2));
+    if (gain > best_gain) best = tm, best_gain = gain;
+  }
+  return best;
 }
 
 }  // namespace asperity::geometry

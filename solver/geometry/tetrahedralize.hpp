@@ -1,6 +1,8 @@
 // Tetrahedralizing the solid a closed triangle surface bounds, keeping those triangles exactly.
 #pragma once
 
+#include <vector>
+
 #include "core/mesh.hpp"
 
 namespace asperity::geometry {
@@ -15,12 +17,57 @@ struct TetOptions {
   // Also asked of TetGen with q (its "q ratio/angle" form): smallest dihedral angle, degrees.
   // 0 leaves TetGen's default. Interior refinement cannot fix a sliver touching the surface.
   double min_dihedral_deg = 0;
+  // Lifting flat surface tetrahedra (docs/geometry.md, "Surface tetrahedra"). On nearly flat
+  // patches the constrained Delaunay tetrahedralization keeps "caps", tetrahedra of four surface
+  // vertices whose height above a boundary face is a few % of their longest edge; no interior
+  // point can remove them, since the fourth vertex lies inside every sphere through the face
+  // that bulges inward. A face whose tetrahedron is lower than this fraction of that
+  // tetrahedron's longest edge is therefore given an imposed tetrahedron instead: an interior
+  // apex below it (shared with a lifted neighbour where that is as good), the three triangles
+  // from the face's edges to the apex added as internal facets, and TetGen run again; up to
+  // max_lift_rounds rounds. The result is the round's mesh with the largest predicted step
+  // (step_scales) and never a worse one than without lifts. 0 turns lifting off. 0.3 is where
+  // the face's penalty stiffness p·A·4/h is at most 0.82/0.3 ≈ 2.7× that of a regular
+  // tetrahedron's face (height/edge √(2/3)); higher bounds add tetrahedra for little gain.
+  double min_surface_height_ratio = 0.3;
+  int max_lift_rounds = 8;
+  double lift_depth = 0.5;    // apex depth below the face centroid, × the face's longest edge
+  double lift_spacing = 0.3;  // least distance between two apexes, × the face's longest edge
+  // Least volume / longest edge³ of the tetrahedron between two lifted neighbours' walls (a
+  // regular tetrahedron has 1/(6√2) ≈ 0.118).
+  double min_wedge_volume_ratio = 0.02;
+  // An apex whose tetrahedra include one with least height below this fraction of its longest
+  // edge is taken out again.
+  double min_apex_tet_height_ratio = 0.03;
 };
+
+// Height of the tetrahedron on each surface face above that face, 3V/A, and its longest edge:
+// Munjiza's potential rises from the face over a quarter of that height, so the face's penalty
+// stiffness grows as 1/height (fdem_world.cpp) and the contact step shrinks as √height.
+struct SurfaceTetHeight {
+  int tet = -1;
+  double height = 0;        // m
+  double longest_edge = 0;  // m
+};
+// One entry per `mesh.surface` column, in that order.
+std::vector<SurfaceTetHeight> surface_tet_heights(const TetMesh& mesh);
+
+// What the explicit step of the mesh scales with, material aside. Element: the largest element
+// eigenvalue of a linear tetrahedron grows as (wave speed / least height)², so the step is
+// proportional to the least height 3V/A_max over the tetrahedra. Contact: the Gershgorin bound
+// of time_step.hpp, Σ_faces p A (1/h) / 3 over the node's lumped mass, is proportional to
+// Σ_faces A/H over Σ_tets V at the node (H = 3V/A of the face's tetrahedron).
+struct StepScales {
+  double least_height = 0;        // m; dt_element ∝ least_height
+  double contact_frequency2 = 0;  // 1/m²; dt_contact ∝ 1/√contact_frequency2
+};
+StepScales step_scales(const TetMesh& mesh);
 
 // Constrained Delaunay tetrahedralization with TetGen 1.5 (Si 2015, ACM TOMS 41(2):11), switches
 // "pYzQ" (+ "q" when asked): p reads the surface as a piecewise linear complex, Y forbids
 // Steiner points on it, so the boundary of the result is exactly the input triangles. The
-// result's nodes begin with the surface vertices in their order (checked), its tetrahedra have
+// result's nodes begin with the surface vertices in their order (checked), then the lift apexes
+// (TetOptions), then TetGen's interior points; its tetrahedra have
 // positive orientation ((b−a)×(c−a))·(d−a) > 0, and `surface` is the input's face array.
 // Throws std::runtime_error when TetGen fails (its reason in words) or when the boundary of the
 // result differs from the input triangles.

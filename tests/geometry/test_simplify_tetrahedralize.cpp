@@ -84,6 +84,52 @@ TEST(Tetrahedralize, SimplifiedParticlesKeepTheirSurface) {
   }
 }
 
+double worst_height_ratio(const TetMesh& t) {
+  double r = 1;
+  for (const SurfaceTetHeight& h : surface_tet_heights(t))
+    r = std::min(r, h.height / h.longest_edge);
+  return r;
+}
+
+// The particle of the FEM/DEM collision benchmark (benchmarks/fem_bench.cpp) at 1000 faces.
+TEST(Tetrahedralize, LiftsRemoveTheFlatSurfaceTetsOfTheBenchmarkParticle) {
+  PipelineOptions o;
+  o.faces = 1000;
+  o.tetrahedralize = false;
+  const SurfaceMesh s =
+      prepare_particle(random_particle({.seed = 3, .size = 0.05, .faces = 20 * 9 * 9}), "rock", o)
+          .surface;
+  const TetMesh plain = tetrahedralize(s, {.min_surface_height_ratio = 0});
+  const TetMesh lifted = tetrahedralize(s);
+  expect_tets_keep_surface(s, lifted);
+  // Without lifts TetGen leaves caps: boundary faces whose tetrahedron is a few % high.
+  EXPECT_LT(worst_height_ratio(plain), 0.05);
+  // With them every boundary face's tetrahedron meets the bound TetOptions asks for.
+  EXPECT_GE(worst_height_ratio(lifted), TetOptions{}.min_surface_height_ratio);
+  // The contact step grows as √(height) of the limiting face at fixed node mass: from < 0.05
+  // to ≥ 0.3 is a factor ≥ √6 ≈ 2.4; the element step must not fall.
+  const StepScales a = step_scales(plain), b = step_scales(lifted);
+  EXPECT_GE(std::sqrt(a.contact_frequency2 / b.contact_frequency2), std::sqrt(6.0));
+  EXPECT_GE(b.least_height, a.least_height);
+  // The internal-force cost is linear in the tetrahedra: lifting may add at most 10 %.
+  EXPECT_LE(lifted.tets.cols(), 1.1 * static_cast<double>(plain.tets.cols()));
+}
+
+// Lifting keeps the round with the largest predicted step, so it never predicts a smaller step
+// than no lifting, on any surface.
+TEST(Tetrahedralize, LiftsNeverShrinkThePredictedStep) {
+  for (long n : {100L, 500L, 1000L}) {
+    SCOPED_TRACE(n);
+    const SurfaceMesh s = simplify_edge_collapse(particle(), n);
+    const StepScales a = step_scales(tetrahedralize(s, {.min_surface_height_ratio = 0}));
+    const TetMesh t = tetrahedralize(s);
+    expect_tets_keep_surface(s, t);
+    const StepScales b = step_scales(t);
+    EXPECT_GE(b.least_height, a.least_height);
+    EXPECT_LE(b.contact_frequency2, a.contact_frequency2);
+  }
+}
+
 TEST(Pipeline, FromMemoryReportsTheContractKeys) {
   const PreparedParticle p = prepare_particle(particle(), "seed 11", {.faces = 250});
   const nlohmann::json j = mesh_report(p);
