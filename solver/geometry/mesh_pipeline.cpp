@@ -131,7 +131,8 @@ nlohmann::json mesh_report(const PreparedParticle& p) {
       {"simplification",
        "CGAL edge collapse, Lindstrom-Turk cost and placement, bounded normal change filter"},
       {"tetrahedralization",
-       "TetGen 1.5 constrained Delaunay, switches pYzQ (+q), surface triangles kept"},
+       "TetGen 1.5 constrained Delaunay, switches pYzQ (+q), surface triangles kept; flat surface "
+       "tetrahedra (height < 0.3 x longest edge) lifted onto an interior apex (docs/geometry.md)"},
       {"asperity",
        "max over vertices of the radial height above the inertia-equivalent ellipsoid, over the "
        "equivalent-sphere radius (docs/geometry.md)"},
