@@ -114,7 +114,7 @@ def main():
 
         def med(v):
             return math.nan if not v else (v[len(v) // 2] if len(v) % 2 else 0.5 * (v[len(v) // 2 - 1] + v[len(v) // 2]))
-        lines.append(f"| {al:g} | {pct(med(a1))} | {pct(med(a2))} |")
+        lines.append(f"| {al:g} | {100 * med(a1):.1f} % | {100 * med(a2):.1f} % |")
     with open(os.path.join(a.out, "penalty_sensitivity.md"), "w") as f:
         f.write("\n".join(lines) + "\n")
 

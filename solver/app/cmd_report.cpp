@@ -44,11 +44,12 @@ void add_report_command(CLI::App& app, Action& action) {
     std::string python = kPython;
   };
   auto args = std::make_shared<Args>();
-  auto* cmd =
-      app.add_subcommand("report",
-                         "Report of a study folder (asperity study): OUT/report.md, "
-                         "OUT/report.html, charts (PNG) and the tables "
-                         "(CSV); adds the stability sweep and the YADE comparison when present");
+  auto* cmd = app.add_subcommand(
+      "report",
+      "Report of a study folder (asperity study): OUT/report.md, "
+      "OUT/report.html, charts (PNG) and the tables "
+      "(CSV); adds the stability sweep, the YADE comparison and the penalty sensitivity "
+      "(reports/study/penalty/) when present");
   cmd->add_option("study", args->study, "Study folder (as asperity study --out wrote it)")
       ->required();
   cmd->add_option("--out", args->out, "Report folder (default: the study folder)");
@@ -90,6 +91,11 @@ void add_report_command(CLI::App& app, Action& action) {
                                        out.string()};
       if (!stability.empty()) argv.insert(argv.end(), {"--stability", stability.string()});
       if (!yade.empty()) argv.insert(argv.end(), {"--yade", yade.string()});
+      // The penalty-sensitivity runs (reports/tools/penalty_sensitivity.sh), when present.
+      const fs::path penalty = reports / "study" / "penalty";
+      if (fs::exists(penalty / "penalty_sensitivity.csv")) {
+        argv.insert(argv.end(), {"--penalty", penalty.string()});
+      }
       const int rc = run_process(argv);
       if (rc != 0)
         throw std::runtime_error("report script failed (exit " + std::to_string(rc) + ")");
