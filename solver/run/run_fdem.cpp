@@ -40,6 +40,47 @@ double cpu_seconds() {
 // Gershgorin bounds), so the FEM/DEM default is 0.5 unless the scene gives its own factor.
 constexpr double kFdemSafety = 0.5;
 
+// Runaway penetration (an instability criterion beside the energy check). The potential of an
+// element rises from 0 on its faces to 1 at its centroid (contact/munjiza_potential.hpp), and the
+// penalty force on a point grows with it only up to there: past the centroid the point is in
+// another sub-tetrahedron and is pushed on, out through the far side. A contact whose deepest
+// point has gone half-way to the contacting element's centroid (World::penetration ≥ 0.5) is
+// tunnelling the penalty: a healthy contact at α = 10 stays below a few per cent (its
+// penetration is about a tenth of the element's elastic shortening), so 0.5 leaves an order of
+// magnitude of margin while still stopping the run before the node reaches the centroid, at
+// which point the force reverses. Energy is conserved while a body tunnels, so the energy check
+// alone cannot see it.
+constexpr double kRunawayPenetration = 0.5;
+
+// The second half of the criterion: a body passed through another when its centre lies inside
+// the other's tetrahedra (checked every step, for bodies whose centre lies in their own material
+// at the start; a hollow or hooked body's centre may legitimately lie in another). It catches a
+// body that crossed the other's surface layer within a step or two, which the depth may miss.
+struct BodyTets {
+  Eigen::Matrix4Xi tets;  // global node indices
+  int node_begin = 0, node_end = 0;
+  bool centre_inside_itself = false;
+};
+
+bool inside_body(const fdem::World& w, const BodyTets& b, const Vec3& x) {
+  const auto nodes = w.x.middleCols(b.node_begin, b.node_end - b.node_begin);
+  if ((x.array() < nodes.rowwise().minCoeff().array()).any() ||
+      (x.array() > nodes.rowwise().maxCoeff().array()).any()) {
+    return false;
+  }
+  for (Eigen::Index k = 0; k < b.tets.cols(); ++k) {
+    contact::TetNodes t;
+    Vec3 lo = w.x.col(b.tets(0, k)), hi = lo;
+    for (int i = 0; i < 4; ++i) {
+      t[i] = w.x.col(b.tets(i, k));
+      lo = lo.cwiseMin(t[i]), hi = hi.cwiseMax(t[i]);
+    }
+    if ((x.array() < lo.array()).any() || (x.array() > hi.array()).any()) continue;
+    if (contact::barycentric(t, x).minCoeff() >= 0) return true;
+  }
+  return false;
+}
+
 TetMesh mesh_body(const scene::MeshShape& m, const std::string& key) {
 #if ASPERITY_HAVE_GEOMETRY
   geometry::PipelineOptions o;
@@ -244,6 +285,38 @@ RunResult run_fdem(const scene::SceneDef& s, const RunOptions& options) {
     return partner >= 0 ? Vec3(v - fdem::body_velocity(w, partner)) : v;
   };
 
+  std::vector<BodyTets> body_tets(w.bodies.size());
+  for (std::size_t b = 0; b < w.bodies.size(); ++b) {
+    body_tets[b].tets = built.def.bodies[b].mesh.tets.array() + w.bodies[b].node_begin;
+    body_tets[b].node_begin = w.bodies[b].node_begin;
+    body_tets[b].node_end = w.bodies[b].node_end;
+    body_tets[b].centre_inside_itself =
+        w.bodies[b].kind != fdem::BodyKind::fixed &&
+        inside_body(w, body_tets[b], fdem::body_centre(w, static_cast<int>(b)));
+  }
+  auto body_name = [&](int b) { return "\"" + w.bodies[b].name + "\""; };
+  auto check_penetration = [&](RunMonitor& monitor) {
+    if (w.penetration >= kRunawayPenetration) {
+      monitor.flag("runaway penetration: bodies " + body_name(w.penetration_body_a) + " and " +
+                   body_name(w.penetration_body_b) + " overlap " + fmt(w.penetration) +
+                   " of the way to an element's centre (limit " + fmt(kRunawayPenetration) +
+                   ") at t = " + fmt(w.time) + " s");
+      return;
+    }
+    for (std::size_t a = 0; a < w.bodies.size(); ++a) {
+      if (!body_tets[a].centre_inside_itself) continue;
+      const Vec3 c = fdem::body_centre(w, static_cast<int>(a));
+      for (std::size_t b = 0; b < w.bodies.size(); ++b) {
+        if (b != a && inside_body(w, body_tets[b], c)) {
+          monitor.flag("runaway penetration: body " + body_name(static_cast<int>(a)) +
+                       " passed through " + body_name(static_cast<int>(b)) +
+                       " (its centre is inside it) at t = " + fmt(w.time) + " s");
+          return;
+        }
+      }
+    }
+  };
+
   RunResult result;
   const auto wall0 = std::chrono::steady_clock::now();
   const double cpu0 = cpu_seconds();
@@ -271,6 +344,7 @@ RunResult run_fdem(const scene::SceneDef& s, const RunOptions& options) {
   const long check_every = std::min(20, std::max(1, s.record.every));
   Vec3 impulse = Vec3::Zero(), v_approach = Vec3::Zero(), v_separation = Vec3::Zero();
   bool was_touching = im.touching, ended = false;
+  double max_penetration = 0;  // largest World::penetration, for the summary
   for (long k = 1; k <= n_steps && !monitor.unstable(); ++k) {
     const bool row = k % s.record.every == 0 || k == n_steps;
     w.want_energy = row || k % check_every == 0;
@@ -280,6 +354,9 @@ RunResult run_fdem(const scene::SceneDef& s, const RunOptions& options) {
       monitor.flag(w.failure);
       break;
     }
+    max_penetration = std::max(max_penetration, w.penetration);
+    check_penetration(monitor);
+    if (monitor.unstable()) break;
     im.add(w.time, w.record_force, w.record_depth);
     impulse += w.record_force * dt;
     if (!was_touching && im.touching && im.first_contact_time >= 0 && v_approach.isZero()) {
@@ -319,6 +396,8 @@ RunResult run_fdem(const scene::SceneDef& s, const RunOptions& options) {
   j["contact_duration"] = im.duration_until(w.time);
   j["first_contact_time"] = im.first_contact_time < 0 ? J() : J(im.first_contact_time);
   j["max_overlap"] = im.max_overlap;
+  // Largest overlap depth / contacting element's centroid height (runaway penetration at 0.5).
+  j["max_penetration_ratio"] = max_penetration;
   // e = −(v_sep · n) / (v_app · n), n the direction of the recorded body's contact impulse,
   // velocities of its centre of mass relative to the partner's, at the first contact's start and
   // end.
