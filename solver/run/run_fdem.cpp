@@ -14,6 +14,7 @@
 #include "fdem/fdem_world.hpp"
 #include "fdem/structured_mesh.hpp"
 #include "fdem/time_step.hpp"
+#include "fem/tet_elements.hpp"
 #include "run/impact_measures.hpp"
 #include "run/run_monitor.hpp"
 #if ASPERITY_HAVE_GEOMETRY
@@ -146,6 +147,13 @@ Built build(const scene::SceneDef& s) {
       if (!body.fixed) {
         d.velocity = body.velocity;
         d.angular_velocity = body.angular_velocity;
+      }
+      if (body.damping_ratio > 0) {
+        // ξ = β ω / 2 for stiffness-proportional damping (fem/tet_elements.hpp), at the body's
+        // highest element frequency.
+        const fem::TetElements e = fem::make_tet_elements(
+            d.mesh.nodes, d.mesh.tets, mat.young, mat.poisson, mat.density, 0, key + "mesh");
+        d.damping = 2 * body.damping_ratio / fem::element_critical_step(e).omega_max;
       }
     } else if (const auto* box = std::get_if<scene::BoxShape>(&body.shape)) {
       // A fixed block: its box as six tetrahedra with fixed nodes, the same potential target as
@@ -431,7 +439,10 @@ RunResult run_fdem(const scene::SceneDef& s, const RunOptions& options) {
            {"model", kind_name(b.kind)},
            {"nodes", b.node_end - b.node_begin},
            {"mass", b.mass}};
-    if (b.elements >= 0) e["tets"] = w.elements[b.elements].size();
+    if (b.elements >= 0) {
+      e["tets"] = w.elements[b.elements].size();
+      e["damping"] = w.elements[b.elements].damping;  // Kelvin–Voigt β, s
+    }
     bodies.push_back(e);
   }
   j["bodies"] = bodies;
