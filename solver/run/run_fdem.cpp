@@ -53,20 +53,25 @@ constexpr double kFdemSafety = 0.5;
 // alone cannot see it.
 constexpr double kRunawayPenetration = 0.5;
 
-// The second half of the criterion: a body passed through another when its centre lies inside
-// the other's tetrahedra (checked every step, for bodies whose centre lies in their own material
-// at the start; a hollow or hooked body's centre may legitimately lie in another). It catches a
-// body that crossed the other's surface layer within a step or two, which the depth may miss.
+// The second half of the criterion: a body passed through another when its centre, on its way
+// through the last step, entered the other's tetrahedra (taken where they are at the end of the
+// step). Checked every step, for bodies whose centre lies in their own material at the start (a
+// hollow or hooked body's centre may legitimately lie in another). It catches a body that sank
+// into a far larger element, where the depth ratio stays small, and one that jumped through a
+// body within a single step, which no contact ever saw.
 struct BodyTets {
   Eigen::Matrix4Xi tets;  // global node indices
   int node_begin = 0, node_end = 0;
   bool centre_inside_itself = false;
 };
 
-bool inside_body(const fdem::World& w, const BodyTets& b, const Vec3& x) {
+// Whether the segment p0 → p1 meets a tetrahedron of b: along it each barycentric coordinate is
+// linear, so the part inside a tetrahedron is the interval where all four are ≥ 0.
+bool path_meets_body(const fdem::World& w, const BodyTets& b, const Vec3& p0, const Vec3& p1) {
+  const Vec3 seg_lo = p0.cwiseMin(p1), seg_hi = p0.cwiseMax(p1);
   const auto nodes = w.x.middleCols(b.node_begin, b.node_end - b.node_begin);
-  if ((x.array() < nodes.rowwise().minCoeff().array()).any() ||
-      (x.array() > nodes.rowwise().maxCoeff().array()).any()) {
+  if ((seg_hi.array() < nodes.rowwise().minCoeff().array()).any() ||
+      (seg_lo.array() > nodes.rowwise().maxCoeff().array()).any()) {
     return false;
   }
   for (Eigen::Index k = 0; k < b.tets.cols(); ++k) {
@@ -76,8 +81,20 @@ bool inside_body(const fdem::World& w, const BodyTets& b, const Vec3& x) {
       t[i] = w.x.col(b.tets(i, k));
       lo = lo.cwiseMin(t[i]), hi = hi.cwiseMax(t[i]);
     }
-    if ((x.array() < lo.array()).any() || (x.array() > hi.array()).any()) continue;
-    if (contact::barycentric(t, x).minCoeff() >= 0) return true;
+    if ((seg_hi.array() < lo.array()).any() || (seg_lo.array() > hi.array()).any()) continue;
+    const Eigen::Vector4d l0 = contact::barycentric(t, p0), l1 = contact::barycentric(t, p1);
+    double s_lo = 0, s_hi = 1;
+    for (int i = 0; i < 4 && s_lo <= s_hi; ++i) {
+      const double d = l1[i] - l0[i];  // L_i(s) = l0 + s d ≥ 0
+      if (d > 0) {
+        s_lo = std::max(s_lo, -l0[i] / d);
+      } else if (d < 0) {
+        s_hi = std::min(s_hi, -l0[i] / d);
+      } else if (l0[i] < 0) {
+        s_hi = -1;
+      }
+    }
+    if (s_lo <= s_hi) return true;
   }
   return false;
 }
@@ -300,7 +317,12 @@ RunResult run_fdem(const scene::SceneDef& s, const RunOptions& options) {
     body_tets[b].node_end = w.bodies[b].node_end;
     body_tets[b].centre_inside_itself =
         w.bodies[b].kind != fdem::BodyKind::fixed &&
-        inside_body(w, body_tets[b], fdem::body_centre(w, static_cast<int>(b)));
+        path_meets_body(w, body_tets[b], fdem::body_centre(w, static_cast<int>(b)),
+                        fdem::body_centre(w, static_cast<int>(b)));
+  }
+  std::vector<Vec3> centre_before(w.bodies.size());
+  for (std::size_t b = 0; b < w.bodies.size(); ++b) {
+    centre_before[b] = fdem::body_centre(w, static_cast<int>(b));
   }
   auto body_name = [&](int b) { return "\"" + w.bodies[b].name + "\""; };
   auto check_penetration = [&](RunMonitor& monitor) {
@@ -315,13 +337,14 @@ RunResult run_fdem(const scene::SceneDef& s, const RunOptions& options) {
       if (!body_tets[a].centre_inside_itself) continue;
       const Vec3 c = fdem::body_centre(w, static_cast<int>(a));
       for (std::size_t b = 0; b < w.bodies.size(); ++b) {
-        if (b != a && inside_body(w, body_tets[b], c)) {
+        if (b != a && path_meets_body(w, body_tets[b], centre_before[a], c)) {
           monitor.flag("runaway penetration: body " + body_name(static_cast<int>(a)) +
                        " passed through " + body_name(static_cast<int>(b)) +
-                       " (its centre is inside it) at t = " + fmt(w.time) + " s");
+                       " (its centre entered it) at t = " + fmt(w.time) + " s");
           return;
         }
       }
+      centre_before[a] = c;
     }
   };
 

@@ -20,7 +20,7 @@ namespace fs = std::filesystem;
 // block (one cell of six tetrahedra) 0.1 m wide and 0.02 m deep, or 1 m wide and deep when
 // `deep`.
 RunResult impact(const std::string& name, const std::string& model, double speed, double penalty,
-                 bool deep, double duration) {
+                 bool deep, double duration, const std::string& extra = "") {
   const std::string lo = deep ? "-0.5, -0.5, -1" : "-0.05, -0.05, -0.02",
                     hi = deep ? "0.5, 0.5, 0" : "0.05, 0.05, 0";
   const std::string mesh = std::string(ASPERITY_SOURCE_DIR) + "/data/meshes/particle-seed3-320.off";
@@ -28,7 +28,7 @@ RunResult impact(const std::string& name, const std::string& model, double speed
       penalty > 0 ? R"({"law": "potential", "penalty": )" + std::to_string(penalty) + "}"
                   : R"({"law": "potential"})";
   const std::string text = R"({"name": ")" + name + R"(", "gravity": [0, 0, -9.81], "duration": )" +
-                           std::to_string(duration) + R"(,
+                           std::to_string(duration) + extra + R"(,
     "materials": {"rock": {"density": 2650, "young": 5e10, "poisson": 0.25,
                          "friction": 0, "restitution": 1}},
     "bodies": [
@@ -100,6 +100,19 @@ TEST(RunawayPenetration, BodySinkingIntoABlockIsFlaggedByItsCentre) {
       << r.message;
   EXPECT_NE(r.message.find(" at t = "), std::string::npos) << r.message;
   EXPECT_LT(r.summary["max_penetration_ratio"].get<double>(), 0.5);
+}
+
+// A step so long (8 ms: 80 mm at 10 m/s, the block is 20 mm deep) that the particle jumps from
+// above the block to below it without any step seeing a contact: the run would end
+// "no_contact". Its centre's path through the step crossed the block, which stops it.
+TEST(RunawayPenetration, BodyJumpingThroughABlockInOneStepIsFlagged) {
+  const RunResult r =
+      impact("jump", "rigid", 10.0, 0, false, 0.016, R"(, "dt": 0.008, "allow_unsafe_dt": true)");
+  EXPECT_EQ(r.status, "unstable");
+  EXPECT_EQ(r.message.rfind(R"(runaway penetration: body "particle" passed through "block")", 0),
+            0u)
+      << r.message;
+  EXPECT_EQ(r.summary["max_penetration_ratio"].get<double>(), 0);  // no contact was ever seen
 }
 
 }  // namespace
