@@ -1,6 +1,6 @@
 #!/usr/bin/env bash
 # Regenerates the failure envelopes under reports/stability/ (CSV + PNG per map; the runs behind
-# them go to MAP/runs/, not kept). About 3 minutes on 2 cores in Release.
+# them go to MAP/runs/, not kept). About 2 minutes on 2 cores in Release.
 # Usage: reports/tools/stability_maps.sh [path/to/asperity]
 set -euo pipefail
 root="$(cd "$(dirname "${BASH_SOURCE[0]}")/../.." && pwd)"
