@@ -107,6 +107,7 @@ void contact_forces(World& w, double dt) {
   w.contact_energy = 0;
   w.record_force.setZero();
   w.record_depth = -1e300;
+  w.penetration = 0;
   for (TetPair& p : w.pairs) {
     const contact::TetNodes a = gather(w, p.a), b = gather(w, p.b);
     if (!boxes_overlap(a, b)) {
@@ -121,6 +122,13 @@ void contact_forces(World& w, double dt) {
       continue;
     }
     ++w.contacts_touching;
+    const int ba = w.surface_tet_body[p.a], bb = w.surface_tet_body[p.b];
+    if (const double r = c.depth / std::max(w.surface_tet_height[p.a], w.surface_tet_height[p.b]);
+        r > w.penetration) {
+      w.penetration = r;
+      w.penetration_body_a = ba;
+      w.penetration_body_b = bb;
+    }
     std::array<Vec3, 4> on_a = c.on_a, on_b = c.on_b;
     const Vec3 fn = c.total_on_a();
     const double fn_mag = fn.norm();
@@ -161,7 +169,6 @@ void contact_forces(World& w, double dt) {
       total_a += on_a[i];
     }
     w.contact_energy += c.energy;
-    const int ba = w.surface_tet_body[p.a], bb = w.surface_tet_body[p.b];
     if (ba == w.record_body || bb == w.record_body) {
       w.record_force += ba == w.record_body ? total_a : Vec3(-total_a);
       w.record_depth = std::max(w.record_depth, c.depth);
@@ -253,6 +260,7 @@ World make_world(const WorldDef& def) {
   w.inv_mass.assign(n_nodes, 0.0);
   w.node_body.assign(n_nodes, -1);
   std::vector<int> st_nodes, st_body;
+  std::vector<double> st_height;
   // Surface faces with their sub-tetrahedron height (centroid to face, 3V/(4A)), for the
   // contact time step.
   struct Face {
@@ -326,6 +334,15 @@ World make_world(const WorldDef& def) {
       if (on_surface[t[0]] || on_surface[t[1]] || on_surface[t[2]] || on_surface[t[3]]) {
         for (int i = 0; i < 4; ++i) st_nodes.push_back(t[i] + offset);
         st_body.push_back(static_cast<int>(bi));
+        // h_m = 3V/(4 A_m): the largest belongs to the smallest face.
+        Vec3 p[4];
+        for (int i = 0; i < 4; ++i) p[i] = d.mesh.nodes.col(t[i]);
+        double a_min = 1e300;
+        for (int skip = 0; skip < 4; ++skip) {
+          const Vec3 &q0 = p[(skip + 1) % 4], &q1 = p[(skip + 2) % 4], &q2 = p[(skip + 3) % 4];
+          a_min = std::min(a_min, 0.5 * (q1 - q0).cross(q2 - q0).norm());
+        }
+        st_height.push_back(0.75 * tet_volume(p[0], p[1], p[2], p[3]) / a_min);
       }
       for (int skip = 0; skip < 4; ++skip) {
         std::array<int, 3> key{};
@@ -362,6 +379,7 @@ World make_world(const WorldDef& def) {
   w.surface_tets = Eigen::Map<const Eigen::Matrix4Xi>(st_nodes.data(), 4,
                                                       static_cast<Eigen::Index>(st_body.size()));
   w.surface_tet_body = std::move(st_body);
+  w.surface_tet_height = std::move(st_height);
   if (young_max == 0) {
     for (const BodyDef& d : def.bodies) young_max = std::max(young_max, d.material.young);
   }

@@ -99,6 +99,9 @@ struct World {
   // per-surface-face data for the time step.
   Eigen::Matrix4Xi surface_tets;
   std::vector<int> surface_tet_body;
+  // Largest centroid-to-face height of each surface tetrahedron, 3V/(4 A_min), in the reference
+  // configuration, m: how deep a point can go into its potential before reaching the centroid.
+  std::vector<double> surface_tet_height;
   double penalty = 0;  // Pa
   double friction = 0;
   // Surface triangles (global nodes) and the penalty stiffness of each pressed into another
@@ -126,6 +129,15 @@ struct World {
   int record_body = -1;
   Vec3 record_force = Vec3::Zero();
   double record_depth = -1e300;
+
+  // Deepest penetration of the last step relative to the contacting elements: the largest
+  // depth / max(height_a, height_b) over the touching pairs (0 when none touches), and the two
+  // bodies of that pair. The potential φ at the deepest point is at least this ratio (φ =
+  // depth/height in the sub-tetrahedron that holds it, and height ≤ the larger of the two);
+  // φ → 1 means a node is reaching an element's centroid, past which the penalty pushes it on
+  // through (run/run_fdem.cpp flags it as runaway penetration).
+  double penetration = 0;
+  int penetration_body_a = -1, penetration_body_b = -1;
 
   // Set when an element inverted (J ≤ 0): body, element, J and time; the world stops there.
   std::string failure;

@@ -14,6 +14,7 @@
 #include "fdem/fdem_world.hpp"
 #include "fdem/structured_mesh.hpp"
 #include "fdem/time_step.hpp"
+#include "fem/tet_elements.hpp"
 #include "run/impact_measures.hpp"
 #include "run/run_monitor.hpp"
 #if ASPERITY_HAVE_GEOMETRY
@@ -39,6 +40,64 @@ double cpu_seconds() {
 // at the critical one, and the bound is already conservative (element eigenvalue and
 // Gershgorin bounds), so the FEM/DEM default is 0.5 unless the scene gives its own factor.
 constexpr double kFdemSafety = 0.5;
+
+// Runaway penetration (an instability criterion beside the energy check). The potential of an
+// element rises from 0 on its faces to 1 at its centroid (contact/munjiza_potential.hpp), and the
+// penalty force on a point grows with it only up to there: past the centroid the point is in
+// another sub-tetrahedron and is pushed on, out through the far side. A contact whose deepest
+// point has gone half-way to the contacting element's centroid (World::penetration ≥ 0.5) is
+// tunnelling the penalty: a healthy contact at α = 10 stays below a few per cent (its
+// penetration is about a tenth of the element's elastic shortening), so 0.5 leaves an order of
+// magnitude of margin while still stopping the run before the node reaches the centroid, at
+// which point the force reverses. Energy is conserved while a body tunnels, so the energy check
+// alone cannot see it.
+constexpr double kRunawayPenetration = 0.5;
+
+// The second half of the criterion: a body passed through another when its centre, on its way
+// through the last step, entered the other's tetrahedra (taken where they are at the end of the
+// step). Checked every step, for bodies whose centre lies in their own material at the start (a
+// hollow or hooked body's centre may legitimately lie in another). It catches a body that sank
+// into a far larger element, where the depth ratio stays small, and one that jumped through a
+// body within a single step, which no contact ever saw.
+struct BodyTets {
+  Eigen::Matrix4Xi tets;  // global node indices
+  int node_begin = 0, node_end = 0;
+  bool centre_inside_itself = false;
+};
+
+// Whether the segment p0 → p1 meets a tetrahedron of b: along it each barycentric coordinate is
+// linear, so the part inside a tetrahedron is the interval where all four are ≥ 0.
+bool path_meets_body(const fdem::World& w, const BodyTets& b, const Vec3& p0, const Vec3& p1) {
+  const Vec3 seg_lo = p0.cwiseMin(p1), seg_hi = p0.cwiseMax(p1);
+  const auto nodes = w.x.middleCols(b.node_begin, b.node_end - b.node_begin);
+  if ((seg_hi.array() < nodes.rowwise().minCoeff().array()).any() ||
+      (seg_lo.array() > nodes.rowwise().maxCoeff().array()).any()) {
+    return false;
+  }
+  for (Eigen::Index k = 0; k < b.tets.cols(); ++k) {
+    contact::TetNodes t;
+    Vec3 lo = w.x.col(b.tets(0, k)), hi = lo;
+    for (int i = 0; i < 4; ++i) {
+      t[i] = w.x.col(b.tets(i, k));
+      lo = lo.cwiseMin(t[i]), hi = hi.cwiseMax(t[i]);
+    }
+    if ((seg_hi.array() < lo.array()).any() || (seg_lo.array() > hi.array()).any()) continue;
+    const Eigen::Vector4d l0 = contact::barycentric(t, p0), l1 = contact::barycentric(t, p1);
+    double s_lo = 0, s_hi = 1;
+    for (int i = 0; i < 4 && s_lo <= s_hi; ++i) {
+      const double d = l1[i] - l0[i];  // L_i(s) = l0 + s d ≥ 0
+      if (d > 0) {
+        s_lo = std::max(s_lo, -l0[i] / d);
+      } else if (d < 0) {
+        s_hi = std::min(s_hi, -l0[i] / d);
+      } else if (l0[i] < 0) {
+        s_hi = -1;
+      }
+    }
+    if (s_lo <= s_hi) return true;
+  }
+  return false;
+}
 
 TetMesh mesh_body(const scene::MeshShape& m, const std::string& key) {
 #if ASPERITY_HAVE_GEOMETRY
@@ -105,6 +164,13 @@ Built build(const scene::SceneDef& s) {
       if (!body.fixed) {
         d.velocity = body.velocity;
         d.angular_velocity = body.angular_velocity;
+      }
+      if (body.damping_ratio > 0) {
+        // ξ = β ω / 2 for stiffness-proportional damping (fem/tet_elements.hpp), at the body's
+        // highest element frequency.
+        const fem::TetElements e = fem::make_tet_elements(
+            d.mesh.nodes, d.mesh.tets, mat.young, mat.poisson, mat.density, 0, key + "mesh");
+        d.damping = 2 * body.damping_ratio / fem::element_critical_step(e).omega_max;
       }
     } else if (const auto* box = std::get_if<scene::BoxShape>(&body.shape)) {
       // A fixed block: its box as six tetrahedra with fixed nodes, the same potential target as
@@ -244,6 +310,44 @@ RunResult run_fdem(const scene::SceneDef& s, const RunOptions& options) {
     return partner >= 0 ? Vec3(v - fdem::body_velocity(w, partner)) : v;
   };
 
+  std::vector<BodyTets> body_tets(w.bodies.size());
+  for (std::size_t b = 0; b < w.bodies.size(); ++b) {
+    body_tets[b].tets = built.def.bodies[b].mesh.tets.array() + w.bodies[b].node_begin;
+    body_tets[b].node_begin = w.bodies[b].node_begin;
+    body_tets[b].node_end = w.bodies[b].node_end;
+    body_tets[b].centre_inside_itself =
+        w.bodies[b].kind != fdem::BodyKind::fixed &&
+        path_meets_body(w, body_tets[b], fdem::body_centre(w, static_cast<int>(b)),
+                        fdem::body_centre(w, static_cast<int>(b)));
+  }
+  std::vector<Vec3> centre_before(w.bodies.size());
+  for (std::size_t b = 0; b < w.bodies.size(); ++b) {
+    centre_before[b] = fdem::body_centre(w, static_cast<int>(b));
+  }
+  auto body_name = [&](int b) { return "\"" + w.bodies[b].name + "\""; };
+  auto check_penetration = [&](RunMonitor& monitor) {
+    if (w.penetration >= kRunawayPenetration) {
+      monitor.flag("runaway penetration: bodies " + body_name(w.penetration_body_a) + " and " +
+                   body_name(w.penetration_body_b) + " overlap " + fmt(w.penetration) +
+                   " of the way to an element's centre (limit " + fmt(kRunawayPenetration) +
+                   ") at t = " + fmt(w.time) + " s");
+      return;
+    }
+    for (std::size_t a = 0; a < w.bodies.size(); ++a) {
+      if (!body_tets[a].centre_inside_itself) continue;
+      const Vec3 c = fdem::body_centre(w, static_cast<int>(a));
+      for (std::size_t b = 0; b < w.bodies.size(); ++b) {
+        if (b != a && path_meets_body(w, body_tets[b], centre_before[a], c)) {
+          monitor.flag("runaway penetration: body " + body_name(static_cast<int>(a)) +
+                       " passed through " + body_name(static_cast<int>(b)) +
+                       " (its centre entered it) at t = " + fmt(w.time) + " s");
+          return;
+        }
+      }
+      centre_before[a] = c;
+    }
+  };
+
   RunResult result;
   const auto wall0 = std::chrono::steady_clock::now();
   const double cpu0 = cpu_seconds();
@@ -271,6 +375,7 @@ RunResult run_fdem(const scene::SceneDef& s, const RunOptions& options) {
   const long check_every = std::min(20, std::max(1, s.record.every));
   Vec3 impulse = Vec3::Zero(), v_approach = Vec3::Zero(), v_separation = Vec3::Zero();
   bool was_touching = im.touching, ended = false, ended_by_separation = false;
+  double max_penetration = 0;  // largest World::penetration, for the summary
   for (long k = 1; k <= n_steps && !monitor.unstable(); ++k) {
     const bool row = k % s.record.every == 0 || k == n_steps;
     w.want_energy = row || k % check_every == 0;
@@ -280,6 +385,9 @@ RunResult run_fdem(const scene::SceneDef& s, const RunOptions& options) {
       monitor.flag(w.failure);
       break;
     }
+    max_penetration = std::max(max_penetration, w.penetration);
+    check_penetration(monitor);
+    if (monitor.unstable()) break;
     im.add(w.time, w.record_force, w.record_depth);
     impulse += w.record_force * dt;
     if (!was_touching && im.touching && im.first_contact_time >= 0 && v_approach.isZero()) {
@@ -325,6 +433,8 @@ RunResult run_fdem(const scene::SceneDef& s, const RunOptions& options) {
   j["contact_duration"] = im.duration_until(w.time);
   j["first_contact_time"] = im.first_contact_time < 0 ? J() : J(im.first_contact_time);
   j["max_overlap"] = im.max_overlap;
+  // Largest overlap depth / contacting element's centroid height (runaway penetration at 0.5).
+  j["max_penetration_ratio"] = max_penetration;
   // e = −(v_sep · n) / (v_app · n), n the direction of the recorded body's contact impulse,
   // velocities of its centre of mass relative to the partner's, at the first contact's start and
   // end.
@@ -359,7 +469,10 @@ RunResult run_fdem(const scene::SceneDef& s, const RunOptions& options) {
            {"model", kind_name(b.kind)},
            {"nodes", b.node_end - b.node_begin},
            {"mass", b.mass}};
-    if (b.elements >= 0) e["tets"] = w.elements[b.elements].size();
+    if (b.elements >= 0) {
+      e["tets"] = w.elements[b.elements].size();
+      e["damping"] = w.elements[b.elements].damping;  // Kelvin–Voigt β, s
+    }
     bodies.push_back(e);
   }
   j["bodies"] = bodies;

@@ -138,7 +138,7 @@ SceneDef parse_scene(const io::Json& json, const std::filesystem::path& file,
   for (std::size_t i = 0; i < n; ++i) {
     const JsonReader b = bodies.at(i);
     b.only_keys({"name", "material", "shape", "model", "position", "velocity", "angular_velocity",
-                 "fixed"});
+                 "fixed", "damping_ratio"});
     BodyDef body;
     body.name = b.string("name");
     if (!names.insert(body.name).second)
@@ -170,6 +170,11 @@ SceneDef parse_scene(const io::Json& json, const std::filesystem::path& file,
       b.fail("model", "planes and boxes are rigid; use a mesh body for a deformable block");
     if (std::holds_alternative<SphereShape>(body.shape) && body.model == Model::fem) {
       b.fail("model", "a sphere is rigid here; mesh it (shape \"mesh\") to make it deformable");
+    }
+    if (b.has("damping_ratio")) {
+      if (body.model != Model::fem || body.fixed)
+        b.fail("damping_ratio", "only a moving deformable body (model \"fem\") takes damping");
+      body.damping_ratio = b.in_range("damping_ratio", 0.0, 100.0, false, false);
     }
     s.bodies.push_back(std::move(body));
   }

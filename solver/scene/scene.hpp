@@ -41,6 +41,9 @@ struct BodyDef {
   Vec3 velocity = Vec3::Zero();
   Vec3 angular_velocity = Vec3::Zero();
   bool fixed = false;
+  // Model "fem" only: damping ratio ξ of the body's highest element mode, from stiffness-
+  // proportional Kelvin–Voigt damping (lower modes get ξ ω/ω_max; run/run_fdem.cpp).
+  double damping_ratio = 0;
 };
 
 enum class ContactLaw { hertz, hertz_mindlin, linear, potential };
