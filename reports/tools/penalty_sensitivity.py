@@ -19,6 +19,7 @@ import matplotlib
 
 matplotlib.use("Agg")
 import matplotlib.pyplot as plt  # noqa: E402
+import matplotlib.ticker  # noqa: E402
 
 
 def read_study(folder):
@@ -76,7 +77,9 @@ def main():
                 if pts:
                     ax.plot([x for x, _ in pts], [y / 1e3 for _, y in pts], "o-", label=f"α = {al:g}")
             ax.set_xscale("log")
-            ax.set_xticks([250, 500, 1000], ["250", "500", "1000"])
+            res = sorted({r["resolution"] for r in rows})
+            ax.set_xticks(res, [str(x) for x in res])
+            ax.xaxis.set_minor_formatter(matplotlib.ticker.NullFormatter())
             ax.set_title(f"{p}, {m}")
             ax.set_xlabel("surface triangles")
             ax.set_ylabel("peak force (kN)")
