@@ -125,7 +125,9 @@ StabilityResult stability_sweep(
   j["reference_impulse"] = ref_impulse;
   j["criteria"] =
       "unstable: non-finite state, total energy growth above unstable_energy_growth of "
-      "the energy scale, or an overlap beyond the smaller radius (runaway overlap)";
+      "the energy scale, a sphere overlap beyond the smaller radius (runaway overlap), a "
+      "potential-contact penetration past half an element's centroid height or a body's centre "
+      "inside another (runaway penetration), or an inverted tetrahedron";
   j["sweep_cpu_seconds"] = sweep_cpu;
   j["runs"] = result.rows.size() + static_cast<std::size_t>(runs);
   return result;

@@ -54,6 +54,7 @@ Slide box_on_block(BodyKind kind, int nx, double mu, double v0, double theta) {
 }
 
 struct Track {
+  double half_time = -1;     // s, first step at which v_x ≤ v_x(0)/2 (−1: not yet)
   double stop_time = -1;     // s, first step at which v_x ≤ 0 (−1: still moving)
   double stop_distance = 0;  // m, travel of the centre until then
   double distance = 0;       // m, travel of the centre at the end
@@ -80,12 +81,13 @@ Track run(World& w, double t_end, bool stop_at_rest) {
   Track t;
   const double dt = 0.5 * critical_step(w).critical;
   w.want_energy = false;
-  const double x0 = body_centre(w, 0).x(), b0 = base_x(w);
+  const double x0 = body_centre(w, 0).x(), b0 = base_x(w), v0 = body_velocity(w, 0).x();
   while (w.time < t_end && w.failure.empty()) {
     step(w, dt);
     const double dx = body_centre(w, 0).x() - x0;
     t.max_slip = std::max(t.max_slip, std::abs(base_x(w) - b0));
     t.max_depth = std::max(t.max_depth, w.record_depth);
+    if (t.half_time < 0 && body_velocity(w, 0).x() <= 0.5 * v0) t.half_time = w.time;
     if (t.stop_time < 0 && body_velocity(w, 0).x() <= 0) {
       t.stop_time = w.time;
       t.stop_distance = dx;
@@ -149,7 +151,11 @@ TEST(Friction, RigidBoxOnInclineSlidesAboveFrictionAngle) {
 // too: Coulomb's law on every contact pair sums to μ times the total normal force, which is the
 // weight on average. 3 %: the body vibrates (undamped) on its penalty layer and in its own
 // modes, so the pressure moves between pairs, and a pair whose normal force drops faster than
-// its spring can follow sticks for a step; the stop is taken as the first v_x ≤ 0 of the centre.
+// its spring can follow sticks for a step. The deceleration is read where the speed has halved
+// (v0/2 = μ g t½) and the stop by the distance travelled: both integrate the friction over the
+// slide. The stop time itself is not asserted: near rest the centre's v_x carries the body's
+// vibration, so its first crossing of zero lags by a fraction of a vibration period (1.8–3 %
+// here, depending on the step).
 TEST(Friction, DeformableBoxSlidingOnLevelBlockStopsAfterCoulombDistance) {
   const double mu = 0.3, v0 = 1.0;
   Slide s = box_on_block(BodyKind::deformable, 2, mu, v0, 0);
@@ -158,7 +164,8 @@ TEST(Friction, DeformableBoxSlidingOnLevelBlockStopsAfterCoulombDistance) {
   ASSERT_TRUE(w.failure.empty()) << w.failure;
   ASSERT_GT(t.stop_time, 0) << "still sliding at t = 1 s";
   const double t_stop = v0 / (mu * kG), d_stop = v0 * v0 / (2 * mu * kG);
-  EXPECT_NEAR(t.stop_time / t_stop, 1.0, 0.03) << t.stop_time << " s vs " << t_stop << " s";
+  EXPECT_NEAR(t.half_time / (0.5 * t_stop), 1.0, 0.03)
+      << t.half_time << " s vs " << 0.5 * t_stop << " s";
   EXPECT_NEAR(t.stop_distance / d_stop, 1.0, 0.03) << t.stop_distance << " m vs " << d_stop;
 }
 
