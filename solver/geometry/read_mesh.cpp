@@ -10,6 +10,7 @@
 #include <cstring>
 #include <fstream>
 #include <iostream>
+#include <mutex>
 #include <optional>
 #include <sstream>
 #include <string>
@@ -97,14 +98,21 @@ std::size_t count_nonfinite_tokens(const fs::path& file) {
 
 // CGAL's readers print their own diagnostics to std::cerr (e.g. the PLY reader's "incorrect file
 // format"); the contract allows one line on stderr, ours, so they are held while reading.
+// std::cerr is one object for the whole process: two threads swapping its buffer at once would
+// restore each other's (then destroyed) sink, so the swap is held under one lock.
 class QuietCerr {
  public:
-  QuietCerr() : saved_(std::cerr.rdbuf(sink_.rdbuf())) {}
+  QuietCerr() : lock_(mutex()), saved_(std::cerr.rdbuf(sink_.rdbuf())) {}
   ~QuietCerr() { std::cerr.rdbuf(saved_); }
   QuietCerr(const QuietCerr&) = delete;
   QuietCerr& operator=(const QuietCerr&) = delete;
 
  private:
+  static std::mutex& mutex() {
+    static std::mutex m;
+    return m;
+  }
+  std::lock_guard<std::mutex> lock_;
   std::ostringstream sink_;
   std::streambuf* saved_;
 };

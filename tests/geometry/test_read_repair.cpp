@@ -1,8 +1,11 @@
 // Reading every format and every defect class, each with its expected message (issue 3,
 // "Validation": a test file per defect, written here into a temporary folder).
 #include <cmath>
+#include <iostream>
 #include <limits>
 #include <string>
+#include <thread>
+#include <vector>
 
 #include <gtest/gtest.h>
 
@@ -87,6 +90,24 @@ TEST(ReadMesh, EveryFormatGivesTheCube) {
   load_surface_mesh(dir / "cube.obj", {}, log);
   ASSERT_EQ(log.repairs.size(), 1u);
   EXPECT_EQ(log.repairs[0], "fan-triangulated 6 polygons");
+}
+
+// The readers silence std::cerr while CGAL parses (read_mesh.cpp); the study reads meshes on
+// several threads at once. However the reads interleave, std::cerr must end with its own buffer
+// (a swapped-in sink restored by the wrong thread is destroyed with it, and the next write to
+// std::cerr, at the latest its flush at exit, crashes).
+TEST(ReadMesh, ConcurrentReadsLeaveStdCerrItsBuffer) {
+  test::TempDir dir("concurrent");
+  test::write_text(dir / "cube.off", test::off_text(test::unit_cube()));
+  std::streambuf* const before = std::cerr.rdbuf();
+  std::vector<std::thread> pool;
+  for (int t = 0; t < 4; ++t) {
+    pool.emplace_back([&] {
+      for (int k = 0; k < 200; ++k) EXPECT_EQ(load_error(dir / "cube.off"), "");
+    });
+  }
+  for (std::thread& t : pool) t.join();
+  EXPECT_EQ(std::cerr.rdbuf(), before);
 }
 
 TEST(ReadMesh, EmptyFile) {
