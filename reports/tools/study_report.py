@@ -330,7 +330,7 @@ def penalty_section(out, pen_dir, doc):
     doc.h(2, "Peak force, resolution and the penalty")
     doc.p("Munjiza's potential contact adds a penalty layer whose compliance grows with the element size: with "
           "p = alpha E, a coarse mesh meets the block through a softer contact than a fine one. The same impacts at "
-          "alpha = 10, 100 and 1000 (from " + pen_dir + ", reports/tools/penalty_sensitivity.sh) separate that from "
+          "alpha = 10, 100 and 1000 (reports/study/penalty/, made by reports/tools/penalty_sensitivity.sh) separate that from "
           "the geometry: median over particles and coarser meshes of |peak - peak at the finest mesh| / peak at the "
           "finest mesh, same alpha, and median |peak - peak at the stiffest alpha| / peak at the stiffest alpha, fem.")
     alphas = sorted({num(r["alpha"]) for r in rows})
