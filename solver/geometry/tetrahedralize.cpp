@@ -10,12 +10,16 @@
 #include <cstring>
 #include <limits>
 #include <numbers>
+#include <optional>
 #include <sstream>
 #include <stdexcept>
 #include <string>
 #include <vector>
 
+#include <fcntl.h>
+#include <sys/wait.h>
 #include <tetgen.h>
+#include <unistd.h>
 
 #include "core/error.hpp"
 #include "core/vec.hpp"
@@ -278,6 +282,75 @@ StepScales step_scales(const TetMesh& mesh) {
   return out;
 }
 
+// run_tetgen with lifts, in a child process. Debian's TetGen keeps its internal assert()s, and
+// some sets of lift walls trip one during facet recovery (e.g. removeedgebyflips on a
+// 2000-triangle ballast particle): abort() would end the whole program, a study included. The
+// child sends the mesh back through a pipe; a round whose child fails (signal, throw) is
+// reported as empty and the lifting keeps the best mesh it already has.
+std::optional<TetMesh> run_tetgen_isolated(const SurfaceMesh& surface, const Lifts& lifts,
+                                           const TetOptions& options) {
+  int fd[2];
+  if (pipe(fd) != 0) return run_tetgen(surface, lifts, options);
+  const pid_t pid = fork();
+  if (pid < 0) {
+    close(fd[0]);
+    close(fd[1]);
+    return run_tetgen(surface, lifts, options);
+  }
+  const auto write_all = [](int f, const void* data, std::size_t bytes) {
+    const char* p = static_cast<const char*>(data);
+    while (bytes > 0) {
+      const ssize_t w = write(f, p, bytes);
+      if (w <= 0) return false;
+      p += w;
+      bytes -= static_cast<std::size_t>(w);
+    }
+    return true;
+  };
+  if (pid == 0) {  // child: mesh, send, and leave without running the parent's exit handlers
+    close(fd[0]);
+    // TetGen's assert message is the parent's to summarise (it keeps its mesh), not to print.
+    if (const int null = open("/dev/null", O_WRONLY); null >= 0) dup2(null, STDERR_FILENO);
+    int code = 1;
+    try {
+      const TetMesh tm = run_tetgen(surface, lifts, options);
+      const std::int64_t size[2] = {tm.nodes.cols(), tm.tets.cols()};
+      if (write_all(fd[1], size, sizeof size) &&
+          write_all(fd[1], tm.nodes.data(),
+                    sizeof(double) * 3 * static_cast<std::size_t>(size[0])) &&
+          write_all(fd[1], tm.tets.data(), sizeof(int) * 4 * static_cast<std::size_t>(size[1])))
+        code = 0;
+    } catch (...) {
+    }
+    close(fd[1]);
+    _exit(code);
+  }
+  close(fd[1]);
+  std::string bytes;
+  char buf[1 << 16];
+  for (ssize_t r; (r = read(fd[0], buf, sizeof buf)) != 0;) {
+    if (r < 0) break;
+    bytes.append(buf, static_cast<std::size_t>(r));
+  }
+  close(fd[0]);
+  int status = 0;
+  waitpid(pid, &status, 0);
+  if (!WIFEXITED(status) || WEXITSTATUS(status) != 0 || bytes.size() < 16) return std::nullopt;
+  std::int64_t size[2];
+  std::memcpy(size, bytes.data(), sizeof size);
+  const std::size_t need = sizeof size + sizeof(double) * 3 * static_cast<std::size_t>(size[0]) +
+                           sizeof(int) * 4 * static_cast<std::size_t>(size[1]);
+  if (bytes.size() != need) return std::nullopt;
+  TetMesh tm;
+  tm.nodes.resize(3, size[0]);
+  tm.tets.resize(4, size[1]);
+  std::memcpy(tm.nodes.data(), bytes.data() + sizeof size, sizeof(double) * 3 * size[0]);
+  std::memcpy(tm.tets.data(), bytes.data() + sizeof size + sizeof(double) * 3 * size[0],
+              sizeof(int) * 4 * size[1]);
+  tm.surface = surface.faces;
+  return tm;
+}
+
 TetMesh tetrahedralize(const SurfaceMesh& surface, const TetOptions& options) {
   TetMesh tm = run_tetgen(surface, {}, options);
   if (options.min_surface_height_ratio <= 0) return tm;
@@ -468,7 +541,9 @@ TetMesh tetrahedralize(const SurfaceMesh& surface, const TetOptions& options) {
       }
     }
     if (!added && !dropped) break;
-    tm = run_tetgen(surface, lifts, options);
+    std::optional<TetMesh> next = run_tetgen_isolated(surface, lifts, options);
+    if (!next) break;  // TetGen failed on these walls: keep the best mesh so far
+    tm = std::move(*next);
     const StepScales sc = step_scales(tm);
     const double gain = std::min(sc.least_height / s0.least_height,
                                  std::sqrt(s0.contact_frequency2 / sc.contact_frequency2));

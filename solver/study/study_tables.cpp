@@ -502,6 +502,7 @@ StudyTables write_tables(const StudyDef& def, const fs::path& dir, const StudyOu
                     {"particle_diameter_range", d_max > 0 ? OJson{d_min, d_max} : OJson()},
                     {"particles", def.particles.size()},
                     {"resolutions", def.resolutions},
+                    {"penalty_alpha", def.penalty_alpha ? OJson(*def.penalty_alpha) : OJson()},
                     {"material",
                      {{"density", def.material.density},
                       {"young", def.material.young},

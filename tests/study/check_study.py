@@ -132,6 +132,10 @@ try:
     rec = json.loads(r.stdout)
     check("recommend names a model", rec["recommendation"]["model"] in ("fem", "rigid"), rec)
     check("recommend reads the speed", abs(rec["particle"]["speed"] - 2.0) < 1e-12, rec["particle"])
+    # the guideline holds at the study's penalty (alpha 100), so the scene change carries it:
+    # 100 x the scene particle's E (5e10 Pa)
+    check("recommend carries the study's penalty",
+          rec["scene_change"].get("contact.penalty") == 100 * 5e10, rec["scene_change"])
 except (json.JSONDecodeError, KeyError) as e:
     check("recommend writes JSON", False, e)
 r = run("recommend", scene_file, "--tolerance", "five", "--study", study)
