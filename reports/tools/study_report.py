@@ -402,6 +402,8 @@ def main():
               rows)
     by = summary.get("cpu_seconds_by_model", {})
     doc.p("CPU seconds by model: " + ", ".join(f"{k} {fmt(v)}" for k, v in by.items()) +
+          (f". Wall time of the {summary['runs_computing']} run(s) that computed the cases: "
+           f"{fmt(summary['wall_seconds_computing'])} s" if summary.get("runs_computing") else "") +
           f". Last run: {fmt(summary['last_run']['wall_seconds'])} s wall, "
           f"{fmt(summary['last_run']['cpu_seconds'])} s CPU, {summary['last_run']['ran']} cases run, "
           f"{summary['last_run']['kept']} kept from before.")

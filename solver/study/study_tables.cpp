@@ -539,6 +539,20 @@ StudyTables write_tables(const StudyDef& def, const fs::path& dir, const StudyOu
                             std::count(def.resolutions.begin(), def.resolutions.end(), 100) &&
                             std::count(def.resolutions.begin(), def.resolutions.end(), 1000);
   const long lo = def.resolutions.front(), hi = def.resolutions.back();
+  // Wall time of every run that computed cases in this folder (a resumed study adds up; a rerun
+  // that only kept cases adds nothing), so the report states what the cases took, not the
+  // last, possibly empty, rerun.
+  double wall_computing = run.ran > 0 ? run.wall_seconds : 0.0;
+  int runs_computing = run.ran > 0 ? 1 : 0;
+  if (const fs::path prev = dir / "study_summary.json"; fs::exists(prev)) {
+    try {
+      const io::Json j = io::read_json_file(prev);
+      wall_computing += j.value("wall_seconds_computing", 0.0);
+      runs_computing += j.value("runs_computing", 0);
+    } catch (const std::exception&) {
+      // an unreadable earlier summary only loses the earlier runs' wall time
+    }
+  }
   out.summary = {
       {"study", def.name},
       {"particles", def.particles.size()},
@@ -550,6 +564,8 @@ StudyTables write_tables(const StudyDef& def, const fs::path& dir, const StudyOu
       {"failed", out.failed},
       {"cpu_seconds_total", cpu_total},
       {"cpu_seconds_by_model", cpu_by_model},
+      {"wall_seconds_computing", wall_computing},
+      {"runs_computing", runs_computing},
       {"last_run",
        {{"wall_seconds", run.wall_seconds},
         {"cpu_seconds", run.cpu_seconds},

@@ -55,6 +55,10 @@ with open(os.path.join(study, "study_summary.json")) as f:
     again = json.load(f)
 check("rerun keeps every case", r.returncode == 0 and again["last_run"]["ran"] == 0 and again["last_run"]["kept"] == 16,
       again["last_run"])
+# the wall time that computed the cases is the first run's, and a rerun that only kept cases adds none
+check("computing wall time survives the rerun",
+      again["runs_computing"] == 1 and again["wall_seconds_computing"] == summary["last_run"]["wall_seconds"],
+      (again.get("runs_computing"), again.get("wall_seconds_computing"), summary["last_run"]))
 
 # 3. Bad input: one line, exit 2, naming the key.
 bad = os.path.join(work, "bad.json")
