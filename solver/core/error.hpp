@@ -7,7 +7,7 @@
 
 namespace asperity {
 
-// Exit codes (shared/CONTRACT.md): 0 done, 1 anything else, 2 bad input or usage, 3 unstable.
+// Exit codes (docs/contract.md): 0 done, 1 anything else, 2 bad input or usage, 3 unstable.
 inline constexpr int kExitOk = 0;
 inline constexpr int kExitFailure = 1;
 inline constexpr int kExitBadInput = 2;

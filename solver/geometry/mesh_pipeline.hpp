@@ -47,7 +47,7 @@ PreparedParticle prepare_particle(const std::filesystem::path& file,
 PreparedParticle prepare_particle(const SurfaceMesh& source, const std::string& name,
                                   const PipelineOptions& options);
 
-// mesh.json (shared/CONTRACT.md "Outputs", docs/geometry.md): every number above, SI units.
+// mesh.json (docs/contract.md "Outputs", docs/geometry.md): every number above, SI units.
 nlohmann::json mesh_report(const PreparedParticle& p);
 
 // DIR/surface.off, DIR/tets.vtk (when tetrahedralized), DIR/mesh.json last; each atomically.

@@ -29,7 +29,7 @@ struct BodyMotion {
   Vec3 w = Vec3::Zero();  // rad/s
 };
 
-// Adds the rebound keys to `summary` (shared/CONTRACT.md extension; docs/crosscheck.md):
+// Adds the rebound keys to `summary` (docs/contract.md extension; docs/crosscheck.md):
 //   impact_partner; normal_velocity_in/out (m/s, relative, along the impact normal, both > 0 for
 //   an impact and a rebound); tangential_velocity_in/out (centre, along t̂); slip_velocity_in/out
 //   (contact point, along t̂); spin_in/out (rad/s about n × t̂, positive for forward roll);

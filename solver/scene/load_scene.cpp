@@ -1,4 +1,4 @@
-// Scene loading: every key validated once, here, at the edge (shared/CONTRACT.md, "Scene file").
+// Scene loading: every key validated once, here, at the edge (docs/contract.md, "Scene file").
 #include <cmath>
 #include <map>
 #include <set>

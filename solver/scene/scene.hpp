@@ -1,4 +1,4 @@
-// A scene as the contract defines it (shared/CONTRACT.md): plain definition structs, SI units.
+// A scene as the contract defines it (docs/contract.md): plain definition structs, SI units.
 #pragma once
 
 #include <filesystem>

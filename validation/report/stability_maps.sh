@@ -1,11 +1,11 @@
 #!/usr/bin/env bash
 # Regenerates the failure envelopes under reports/stability/ (CSV + PNG per map; the runs behind
 # them go to MAP/runs/, not kept). About 2 minutes on 2 cores in Release.
-# Usage: reports/tools/stability_maps.sh [path/to/asperity]
+# Usage: validation/report/stability_maps.sh [path/to/asperity]
 set -euo pipefail
 root="$(cd "$(dirname "${BASH_SOURCE[0]}")/../.." && pwd)"
 bin="${1:-$root/build/bin/asperity}"
-map="/usr/bin/python3 $root/reports/tools/stability_map.py --asperity $bin"
+map="/usr/bin/python3 $root/validation/report/stability_map.py --asperity $bin"
 scenes="$root/reports/stability/scenes"
 out="$root/reports/stability"
 

@@ -1,7 +1,7 @@
 #!/usr/bin/python3
 """How much of the peak force's change with mesh resolution the penalty layer makes.
 
-Reads the studies that reports/tools/penalty_sensitivity.sh ran (the same cases at several
+Reads the studies that validation/report/penalty_sensitivity.sh ran (the same cases at several
 values of Munjiza's penalty p = alpha E) and writes OUT/penalty_sensitivity.csv, .md and .png:
 peak force and impulse per particle, model, resolution and alpha, and for each case the change
 from the stiffest alpha (the limit the penalty approaches as its compliance vanishes).
@@ -96,7 +96,7 @@ def main():
              f"p = α·E, α in {', '.join(f'{x:g}' for x in alphas)}. 'vs α = {stiff:g}': the change from the "
              "stiffest penalty run, the limit the contact approaches as the penalty layer's compliance vanishes; "
              "'vs finest': the change from the finest mesh at the same α. "
-             "Regenerate: `bash reports/tools/penalty_sensitivity.sh`.", "",
+             "Regenerate: `bash validation/report/penalty_sensitivity.sh`.", "",
              "![Peak force against resolution, one line per penalty](penalty_sensitivity.png)", "",
              "| particle | model | triangles | α | peak force (N) | vs α = %g | vs finest | impulse vs α = %g | CPU (s) |"
              % (stiff, stiff), "|---|---|---:|---:|---:|---:|---:|---:|---:|"]

@@ -38,7 +38,7 @@ void add_run_command(CLI::App& app, Action& action) {
   auto args = std::make_shared<Args>();
   auto* run = app.add_subcommand(
       "run", "Run one scene: writes DIR/summary.json, DIR/force.csv, DIR/energy.csv");
-  run->add_option("scene", args->scene, "Scene file (JSON, see shared/CONTRACT.md)")->required();
+  run->add_option("scene", args->scene, "Scene file (JSON, see docs/contract.md)")->required();
   run->add_option("--out", args->out, "Output folder")->required();
   run->add_flag("--allow-unsafe-dt", args->allow_unsafe_dt,
                 "Run a given dt even above the predicted critical step");

@@ -1,7 +1,7 @@
 #!/usr/bin/python3
 """The particle-geometry study report (issue 7): Markdown + HTML with matplotlib charts.
 
-Called by `asperity report DIR` (solver/app/cmd_report.cpp) with the study folder that
+Called by `asperity report DIR` (app/cmd_report.cpp) with the study folder that
 `asperity study` wrote (cases.csv, classification.csv, ... and cases/**/force.csv). Reads only;
 writes OUT/report.md, OUT/report.html, OUT/*.png and copies of the tables (CSV).
 Runs under Debian's /usr/bin/python3 with python3-matplotlib.
@@ -322,7 +322,7 @@ CSS = ("body{font-family:sans-serif;max-width:1100px;margin:2em auto;padding:0 1
 
 
 def penalty_section(out, pen_dir, doc):
-    """The penalty-sensitivity runs (reports/tools/penalty_sensitivity.sh), when present."""
+    """The penalty-sensitivity runs (validation/report/penalty_sensitivity.sh), when present."""
     table = os.path.join(pen_dir, "penalty_sensitivity.csv")
     if not os.path.exists(table):
         return
@@ -330,7 +330,7 @@ def penalty_section(out, pen_dir, doc):
     doc.h(2, "Peak force, resolution and the penalty")
     doc.p("Munjiza's potential contact adds a penalty layer whose compliance grows with the element size: with "
           "p = alpha E, a coarse mesh meets the block through a softer contact than a fine one. The same impacts at "
-          "alpha = 10, 100 and 1000 (reports/study/penalty/, made by reports/tools/penalty_sensitivity.sh) separate that from "
+          "alpha = 10, 100 and 1000 (reports/study/penalty/, made by validation/report/penalty_sensitivity.sh) separate that from "
           "the geometry: median over particles and coarser meshes of |peak - peak at the finest mesh| / peak at the "
           "finest mesh, same alpha, and median |peak - peak at the stiffest alpha| / peak at the stiffest alpha, fem.")
     alphas = sorted({num(r["alpha"]) for r in rows})

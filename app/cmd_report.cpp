@@ -1,5 +1,5 @@
 // `asperity report DIR`: the particle-geometry study's report (Markdown + HTML with matplotlib
-// charts) from the tables `asperity study` wrote, by reports/tools/study_report.py.
+// charts) from the tables `asperity study` wrote, by validation/report/study_report.py.
 #include <spawn.h>
 #include <sys/wait.h>
 
@@ -91,7 +91,7 @@ void add_report_command(CLI::App& app, Action& action) {
                                        out.string()};
       if (!stability.empty()) argv.insert(argv.end(), {"--stability", stability.string()});
       if (!yade.empty()) argv.insert(argv.end(), {"--yade", yade.string()});
-      // The penalty-sensitivity runs (reports/tools/penalty_sensitivity.sh), when present.
+      // The penalty-sensitivity runs (validation/report/penalty_sensitivity.sh), when present.
       const fs::path penalty = reports / "study" / "penalty";
       if (fs::exists(penalty / "penalty_sensitivity.csv")) {
         argv.insert(argv.end(), {"--penalty", penalty.string()});

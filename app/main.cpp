@@ -1,4 +1,4 @@
-// The asperity command-line program (shared/CONTRACT.md, "Commands").
+// The asperity command-line program (docs/contract.md, "Commands").
 #include <algorithm>
 #include <iostream>
 #include <string>
