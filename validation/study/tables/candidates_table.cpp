@@ -3,7 +3,7 @@
 #include <algorithm>
 #include <cmath>
 
-#include "study/study_tables.hpp"
+#include "study/curve_measures.hpp"
 #include "study/tables/tables.hpp"
 
 namespace asperity::study::tables {

@@ -2,7 +2,7 @@
 // (docs/study.md, "Classification").
 #include <algorithm>
 
-#include "study/study_tables.hpp"
+#include "study/curve_measures.hpp"
 #include "study/tables/tables.hpp"
 
 namespace asperity::study::tables {

@@ -1,7 +1,7 @@
 // cpu_fit.csv: the CPU cost against the resolution, t = C N^p (docs/study.md, "Tables").
 #include <cmath>
 
-#include "study/study_tables.hpp"
+#include "study/curve_measures.hpp"
 #include "study/tables/tables.hpp"
 
 namespace asperity::study::tables {

@@ -6,7 +6,7 @@
 #include "core/error.hpp"
 #include "io/atomic_file.hpp"
 #include "io/json_file.hpp"
-#include "study/study_tables.hpp"
+#include "study/curve_measures.hpp"
 #include "study/tables/tables.hpp"
 
 namespace asperity::study::tables {
