@@ -1,7 +1,7 @@
 #!/usr/bin/python3
 """The study over MPI ranks and shards gives the same results as one process (issue 16).
 
-Usage: check_mpi.py ASPERITY MPIRUN SMOKE_STUDY.json WORK_DIR. Exit 0 when every check passes;
+Usage: check_mpi.py ASPERITY MPIRUN SMOKE_STUDY.json CASES_DIR WORK_DIR. Exit 0 when every check passes;
 each failure is printed. Same results means: every case's summary.json and the tables cases.csv,
 classification.csv and particle_classes.csv equal, byte for byte, once the timing fields are
 dropped (CPU and wall seconds, the profile): they are measurements of the machine, not results.
@@ -17,7 +17,7 @@ import subprocess
 import sys
 import time
 
-binary, mpirun, study_file, work = sys.argv[1:5]
+binary, mpirun, study_file, cases_dir, work = sys.argv[1:6]
 # --oversubscribe: more ranks than this machine's cores; --allow-run-as-root: CI runs as root.
 MPI = [mpirun, "--oversubscribe", "--allow-run-as-root"]
 failures = []
@@ -146,6 +146,23 @@ with open(other, "w") as f:
     json.dump(spec, f)
 bad("another study's folder", [other, "--out", one], ["study.json", "resolutions", "500"], one)
 same("the refused run left the folder's results alone", ref, results(one))
+
+# 6. validate over two ranks: the same checks, in the same order, as one process.
+def validation_results(folder):
+    with open(os.path.join(folder, "results.csv"), newline="") as f:
+        rows = list(csv.reader(f))
+    keep = [i for i, name in enumerate(rows[0]) if not timing(name)]
+    with open(os.path.join(folder, "validation.json")) as f:
+        checks = json.load(f)["results"]
+    return [[r[i] for i in keep] for r in rows], checks
+
+
+v1, v2 = os.path.join(work, "validate1"), os.path.join(work, "validate2")
+r1 = subprocess.run([binary, "validate", cases_dir, "--out", v1, "-q"], capture_output=True, text=True)
+r2 = subprocess.run(MPI + ["-n", "2", binary, "validate", cases_dir, "--out", v2, "-q"], capture_output=True, text=True)
+check("validate exits 0, alone and over 2 ranks", r1.returncode == 0 and r2.returncode == 0, (r1.stderr, r2.stderr[-2000:]))
+a, b = validation_results(v1), validation_results(v2)
+check("validate over 2 ranks: the same checks", a == b and len(a[1]) > 1, (len(a[1]), len(b[1])))
 
 print(f"{len(failures)} failures" if failures else "all MPI checks pass")
 sys.exit(1 if failures else 0)
