@@ -1,14 +1,14 @@
 // The task pool: a shared queue on rank 0, worker threads on every rank, text messages between.
 #include "cluster/task_pool.hpp"
 
-#include <time.h>
-
 #include <chrono>
 #include <mutex>
 #include <optional>
 #include <thread>
 
 #include <nlohmann/json.hpp>
+
+#include "core/clock.hpp"
 
 namespace asperity::cluster {
 namespace {
@@ -19,12 +19,6 @@ using Clock = std::chrono::steady_clock;
 // thread its own tag, so answers cannot cross); a rank whose workers are all done says so on
 // kRankDone; rank 0 sends every report on kReports.
 constexpr int kAsk = 11, kRankDone = 12, kReports = 13, kAnswer = 1000;
-
-double thread_cpu_seconds() {
-  timespec ts{};
-  clock_gettime(CLOCK_THREAD_CPUTIME_ID, &ts);
-  return static_cast<double>(ts.tv_sec) + 1e-9 * static_cast<double>(ts.tv_nsec);
-}
 
 double since(Clock::time_point t0) {
   return std::chrono::duration<double>(Clock::now() - t0).count();
