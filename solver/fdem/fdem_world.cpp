@@ -210,6 +210,7 @@ void compute_forces(World& w, double dt) {
   w.f.setZero();
   auto t0 = Clock::now();
   contact_forces(w, dt);
+  if (w.keep_contact_force) w.f_contact = w.f;  // f held the contact forces only, so far
   w.profile.contact += seconds_since(t0);
   t0 = Clock::now();
   internal_forces(w, dt);

@@ -38,7 +38,7 @@ Json read_json_file(const std::filesystem::path& file) {
   }
 }
 
-std::string closest_key(std::string_view key, std::initializer_list<std::string_view> allowed) {
+std::string closest_key(std::string_view key, std::span<const std::string_view> allowed) {
   std::string best;
   std::size_t best_d = 3;  // suggest only near misses: at most two edits
   for (std::string_view cand : allowed) {
@@ -104,7 +104,7 @@ std::size_t JsonReader::require_array() const {
   return value_.size();
 }
 
-void JsonReader::only_keys(std::initializer_list<std::string_view> allowed) const {
+void JsonReader::only_keys_in(std::span<const std::string_view> allowed) const {
   require_object();
   for (const auto& [k, v] : value_.items()) {
     if (std::find(allowed.begin(), allowed.end(), k) != allowed.end()) continue;

@@ -3,6 +3,7 @@
 
 #include <filesystem>
 #include <initializer_list>
+#include <span>
 #include <string>
 #include <string_view>
 
@@ -18,7 +19,11 @@ using Json = nlohmann::json;
 Json read_json_file(const std::filesystem::path& file);
 
 // Closest of `allowed` to `key` by edit distance, or "" when none is close.
-std::string closest_key(std::string_view key, std::initializer_list<std::string_view> allowed);
+std::string closest_key(std::string_view key, std::span<const std::string_view> allowed);
+inline std::string closest_key(std::string_view key,
+                               std::initializer_list<std::string_view> allowed) {
+  return closest_key(key, std::span(allowed.begin(), allowed.size()));
+}
 
 // A cursor on one JSON object inside a file: every accessor validates type and range and throws
 // InputError "FILE: KEY.PATH: problem (got VALUE)".
@@ -34,7 +39,10 @@ class JsonReader {
   JsonReader at(std::size_t index) const;        // array element
 
   // Rejects keys not listed, suggesting the closest allowed one.
-  void only_keys(std::initializer_list<std::string_view> allowed) const;
+  void only_keys(std::initializer_list<std::string_view> allowed) const {
+    only_keys_in(std::span(allowed.begin(), allowed.size()));
+  }
+  void only_keys_in(std::span<const std::string_view> allowed) const;  // a key table
   void require_object() const;
   std::size_t require_array() const;  // returns the length
 

@@ -8,6 +8,7 @@
 
 #include <nlohmann/json.hpp>
 
+#include "run/vtk_series.hpp"
 #include "scene/scene.hpp"
 
 namespace asperity::run {
@@ -26,6 +27,8 @@ struct RunOptions {
   bool allow_unsafe_dt = false;
   bool keep_rows = true;  // fill force and energy rows (off for sweeps)
   bool progress = false;  // progress line on stderr for long runs
+  // ParaView frames (run/vtk_series.hpp); none unless set with every > 0.
+  std::optional<VtkOutput> vtk;
 };
 
 struct RunResult {
@@ -34,6 +37,7 @@ struct RunResult {
   nlohmann::ordered_json summary;
   std::vector<ForceRow> force;
   std::vector<EnergyRow> energy;
+  SeriesStats vtk;  // frames written (not in the summary: frames change no result)
 };
 
 // Throws InputError for a scene the solver cannot run (bad geometry, unsafe dt, ...).
