@@ -17,6 +17,7 @@
 #include "fem/tet_elements.hpp"
 #include "run/impact_measures.hpp"
 #include "run/run_monitor.hpp"
+#include "run/vtk_series.hpp"
 #if ASPERITY_HAVE_GEOMETRY
 #include "geometry/mesh_pipeline.hpp"
 #endif
@@ -356,6 +357,14 @@ RunResult run_fdem(const scene::SceneDef& s, const RunOptions& options) {
     }
   };
 
+  // ParaView frames: an observer of the loop that only reads the world.
+  std::optional<FdemSeries> frames;
+  if (options.vtk && options.vtk->every > 0) {
+    std::vector<Eigen::Matrix4Xi> tets;
+    for (const BodyTets& b : body_tets) tets.push_back(b.tets);
+    frames.emplace(w, tets, *options.vtk);
+  }
+
   RunResult result;
   const auto wall0 = std::chrono::steady_clock::now();
   const double cpu0 = cpu_seconds();
@@ -413,6 +422,8 @@ RunResult run_fdem(const scene::SceneDef& s, const RunOptions& options) {
       monitor.check_energy(w.time, balance(e), w.x.allFinite());
       if (row) push_rows(e);
     }
+    if (frames)
+      frames->after_step(w, k, w.record_force.norm(), k == n_steps || ended_by_separation);
     monitor.progress(k);
     if (ended_by_separation) {
       if (!row) push_rows(fdem::energy(w));  // the last state, where the run stopped
@@ -420,6 +431,10 @@ RunResult run_fdem(const scene::SceneDef& s, const RunOptions& options) {
     }
   }
   monitor.finish();
+  if (frames) {
+    frames->finish(w);
+    result.vtk = frames->stats();
+  }
   const double cpu = cpu_seconds() - cpu0;
   const double wall =
       std::chrono::duration<double>(std::chrono::steady_clock::now() - wall0).count();

@@ -195,6 +195,10 @@ RunResult run_scene(const scene::SceneDef& s, const RunOptions& options) {
   }
   const long n_steps = static_cast<long>(n_steps_real);
 
+  // ParaView frames: an observer of the loop that only reads the world.
+  std::optional<SphereSeries> frames;
+  if (options.vtk && options.vtk->every > 0) frames.emplace(w, *options.vtk);
+
   RunResult result;
   const auto wall0 = std::chrono::steady_clock::now();
   const double cpu0 = cpu_seconds();
@@ -234,10 +238,16 @@ RunResult run_scene(const scene::SceneDef& s, const RunOptions& options) {
     if (w.max_overlap_ratio > 1) {
       monitor.flag("runaway overlap (a body passed through another) at t = " + fmt(w.time) + " s");
     }
+    if (frames)
+      frames->after_step(w, k, w.record_force.norm(), k == n_steps || ended_by_separation);
     monitor.progress(k);
     if (ended_by_separation) break;
   }
   monitor.finish();
+  if (frames) {
+    frames->finish(w);
+    result.vtk = frames->stats();
+  }
   const double cpu = cpu_seconds() - cpu0;
   const double wall =
       std::chrono::duration<double>(std::chrono::steady_clock::now() - wall0).count();

@@ -198,6 +198,13 @@ void FdemSeries::after_step(const fdem::World& w, long k, double force, bool las
 }
 
 void FdemSeries::finish(const fdem::World& w) {
+  // A run that stopped early (unstable) ends on the state where it stopped.
+  if (w.steps != last_written_step_) {
+    files_.write_frame(w.time, frame_name("bodies", frame_++, "vtu"),
+                       document(w, capture(w, w.steps)));
+    last_written_step_ = w.steps;
+    if (peak_.step == w.steps) peak_.step = -2;
+  }
   if (peak_.step < 0) return;
   files_.write_frame(peak_.time, "bodies_peak.vtu", document(w, peak_));
   peak_.step = -2;
@@ -276,6 +283,13 @@ void SphereSeries::after_step(const dem::SphereWorld& w, long k, double force, b
 }
 
 void SphereSeries::finish(const dem::SphereWorld& w) {
+  // A run that stopped early (unstable) ends on the state where it stopped.
+  if (w.steps != last_written_step_) {
+    files_.write_frame(w.time, frame_name("spheres", frame_++, "vtp"),
+                       document(w, capture(w, w.steps)));
+    last_written_step_ = w.steps;
+    if (peak_.step == w.steps) peak_.step = -2;
+  }
   if (peak_.step < 0) return;
   files_.write_frame(peak_.time, "spheres_peak.vtp", document(w, peak_));
   peak_.step = -2;

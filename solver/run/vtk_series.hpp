@@ -77,7 +77,8 @@ class FdemSeries {
   FdemSeries(fdem::World& w, const std::vector<Eigen::Matrix4Xi>& body_tets, const VtkOutput& out);
   // After step k; `force` the recorded body's contact force magnitude (N); `last`: the run ends.
   void after_step(const fdem::World& w, long k, double force, bool last);
-  // Writes the peak frame unless a regular frame already holds that step.
+  // Writes the last state unless a frame holds it (a run stopped as unstable), and the peak frame
+  // unless a regular frame already holds that step.
   void finish(const fdem::World& w);
   const SeriesStats& stats() const { return files_.stats(); }
 
