@@ -35,7 +35,9 @@ TEST(TetStress, UniaxialStrainVonMisesConvergesToLinearElasticity) {
     Mat3 f = Mat3::Identity();
     f(0, 0) += eps;
     const double err = std::abs(stress_under(f).von_mises - 2 * l.mu * eps) / (2 * l.mu * eps);
-    if (err_prev > 0) EXPECT_NEAR(std::log2(err_prev / err), 1.0, 0.05);
+    if (err_prev > 0) {
+      EXPECT_NEAR(std::log2(err_prev / err), 1.0, 0.05);
+    }
     err_prev = err;
   }
   EXPECT_LT(err_prev, 2e-3);
