@@ -38,7 +38,11 @@ Json read_json_file(const std::filesystem::path& file) {
   }
 }
 
-std::string closest_key(std::string_view key, std::span<const std::string_view> allowed) {
+std::string closest_key(std::string_view key, std::initializer_list<std::string_view> allowed) {
+  return closest_key(key, std::vector<std::string_view>(allowed));
+}
+
+std::string closest_key(std::string_view key, const std::vector<std::string_view>& allowed) {
   std::string best;
   std::size_t best_d = 3;  // suggest only near misses: at most two edits
   for (std::string_view cand : allowed) {
@@ -108,7 +112,8 @@ void JsonReader::only_keys_in(std::span<const std::string_view> allowed) const {
   require_object();
   for (const auto& [k, v] : value_.items()) {
     if (std::find(allowed.begin(), allowed.end(), k) != allowed.end()) continue;
-    const std::string near = closest_key(k, allowed);
+    const std::string near =
+        closest_key(k, std::vector<std::string_view>(allowed.begin(), allowed.end()));
     fail(k, near.empty() ? "unknown key" : "unknown key (did you mean \"" + near + "\"?)");
   }
 }

@@ -13,20 +13,9 @@
 #include "dem/sphere_world.hpp"
 #include "fdem/fdem_world.hpp"
 #include "io/vtk_xml.hpp"
+#include "run/vtk_output.hpp"
 
 namespace asperity::run {
-
-struct VtkOutput {
-  std::filesystem::path dir;  // the series' folder (created; an earlier series in it is removed)
-  int every = 0;              // steps between frames; 0 writes none
-  io::vtk::Encoding encoding = io::vtk::Encoding::base64;
-};
-
-struct SeriesStats {
-  long frames = 0;           // frames listed in run.pvd (the static part not counted)
-  long long bytes = 0;       // bytes of every frame file written, static part included
-  double write_seconds = 0;  // wall time spent writing, s
-};
 
 // The folder, its collection and the bookkeeping every model's series shares. Each file is
 // complete (written to a temporary name and renamed) before run.pvd is rewritten to list it.
