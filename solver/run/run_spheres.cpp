@@ -3,8 +3,8 @@
 #include "run/run_spheres.hpp"
 
 #include <cmath>
-#include <optional>
 #include <numbers>
+#include <optional>
 
 #include "core/error.hpp"
 #include "core/format.hpp"
