@@ -199,6 +199,7 @@ void compute_forces(World& w, double dt) {
   w.f.setZero();
   const std::uint64_t t0 = ticks();
   contact_forces(w, dt);
+  if (w.keep_contact_force) w.f_contact = w.f;  // f held the contact forces only, so far
   const std::uint64_t t1 = ticks();
   internal_forces(w, dt);
   w.profile.contact += t1 - t0;
