@@ -6,11 +6,16 @@
 #include <array>
 #include <chrono>
 #include <cmath>
+#include <limits>
 #include <map>
+#include <tuple>
 #include <sstream>
 
 #include "contact/munjiza_potential.hpp"
+#include "contact/overlap_volume.hpp"
 #include "contact/tangential_spring.hpp"
+#include "contact/volume_hertz.hpp"
+#include "contact/volume_linear.hpp"
 #include "core/error.hpp"
 #include "fdem/broad_phase.hpp"
 
@@ -176,6 +181,107 @@ void contact_forces(World& w, double dt) {
   }
 }
 
+// A reference point of a body near its contacts: a moving body's centre, else its first node.
+Vec3 reference_point(const World& w, int body) {
+  const Body& b = w.bodies[body];
+  if (b.kind == BodyKind::rigid) return w.rigid[b.rigid].centre;
+  return w.x.col(b.node_begin);
+}
+
+BodyOverlap& overlap_of(World& w, std::vector<BodyOverlap>& now, int a, int b) {
+  for (BodyOverlap& o : now) {
+    if (o.a == a && o.b == b) return o;
+  }
+  BodyOverlap o{.a = a, .b = b};
+  // The origin of the integrals: the moving body's centre (near the contact, unlike a plane's
+  // far-away slab nodes), so the terms |x − o| · area stay of the size of the bodies.
+  o.origin = reference_point(w, w.bodies[a].kind == BodyKind::fixed ? b : a);
+  for (const BodyOverlap& old : w.overlaps) {
+    if (old.a == a && old.b == b) o.energy = old.energy, o.volume = old.volume, o.slope = old.slope;
+  }
+  now.push_back(o);
+  return now.back();
+}
+
+// Clips the surface triangles owned by tetrahedron `owner` against tetrahedron `target` into
+// `side`.
+void clip_owned_faces(const World& w, int owner, const contact::TetNodes& target,
+                      const Vec3& origin, contact::OverlapSide& side) {
+  for (int k = w.tet_faces_begin[owner]; k < w.tet_faces_begin[owner + 1]; ++k) {
+    const auto f = w.face_nodes.col(w.tet_faces[k]);
+    contact::clip_triangle_in_tet({w.x.col(f[0]), w.x.col(f[1]), w.x.col(f[2])}, target, origin,
+                                  side);
+  }
+}
+
+// Volume laws: every candidate pair of tetrahedra adds its clipped surface integrals to its body
+// pair; each body pair in contact then gets F_A = −s S_A and torque −s M_A about A's centre, with
+// s = W'(V) (volume-hertz) or k_v V / |S_A| (volume-linear) (contact/overlap_volume.hpp).
+void volume_contact_forces(World& w) {
+  w.contact_energy = 0;
+  w.record_force.setZero();
+  w.record_depth = -1e300;
+  w.penetration = 0;
+  for (RigidBody& rb : w.rigid) rb.volume_force.setZero(), rb.volume_torque.setZero();
+  std::vector<BodyOverlap> now;
+  for (const TetPair& p : w.pairs) {
+    const contact::TetNodes a = gather(w, p.a), b = gather(w, p.b);
+    if (!boxes_overlap(a, b)) continue;
+    ++w.contact_evaluations;
+    int ba = w.surface_tet_body[p.a], bb = w.surface_tet_body[p.b];
+    int ta = p.a, tb = p.b;
+    if (ba > bb) std::swap(ba, bb), std::swap(ta, tb);
+    BodyOverlap& o = overlap_of(w, now, ba, bb);
+    clip_owned_faces(w, ta, ta == p.a ? b : a, o.origin, o.side_a);
+    clip_owned_faces(w, tb, tb == p.b ? a : b, o.origin, o.side_b);
+  }
+  for (BodyOverlap& o : now) {
+    const contact::Overlap ov = contact::combine(o.side_a, o.side_b, o.origin);
+    const double area = ov.area.norm();
+    if (!(ov.volume > 0) || !(area > 0)) {
+      o.energy = 0, o.volume = 0, o.slope = 0;
+      continue;
+    }
+    ++w.contacts_touching;
+    const Body &body_a = w.bodies[o.a], &body_b = w.bodies[o.b];
+    double slope = 0;
+    if (w.law == ContactLaw::volume_hertz) {
+      const double c = contact::volume_hertz_coefficient(
+          effective_young(body_a.material, body_b.material),
+          contact::volume_hertz_radius(body_a.radius, body_b.radius));
+      const contact::VolumeEnergy e = contact::volume_hertz(ov.volume, c);
+      slope = e.slope;
+      o.energy = e.energy;
+    } else {
+      slope = w.kv * ov.volume / area;  // |F| = k_v V (contact/volume_linear.hpp)
+      // The force is −s ∇V, so its work is ∫ s dV along any path: trapezoidal in V.
+      o.energy += 0.5 * (slope + o.slope) * (ov.volume - o.volume);
+    }
+    o.volume = ov.volume;
+    o.slope = slope;
+    const Vec3 force_a = -slope * o.side_a.area;
+    const Vec3 force_b = -slope * o.side_b.area;
+    for (const auto& [body, side, force] :
+         {std::tuple{o.a, &o.side_a, force_a}, std::tuple{o.b, &o.side_b, force_b}}) {
+      const Body& bd = w.bodies[body];
+      if (bd.kind != BodyKind::rigid) continue;
+      RigidBody& rb = w.rigid[bd.rigid];
+      // M(c) = M(o) − (c − o) × S.
+      const Vec3 moment = side->moment - (rb.centre - o.origin).cross(side->area);
+      rb.volume_force += force;
+      rb.volume_torque -= slope * moment;
+    }
+    w.contact_energy += o.energy;
+    if (o.a == w.record_body || o.b == w.record_body) {
+      w.record_force += o.a == w.record_body ? force_a : force_b;
+      // The overlap's mean depth V/|S| (m): linear in the approach for a sphere, a vertex, an
+      // edge and a face alike, so the contact's start and end interpolate well.
+      w.record_depth = std::max(w.record_depth, ov.volume / area);
+    }
+  }
+  w.overlaps = std::move(now);
+}
+
 void internal_forces(World& w, double dt) {
   double elastic = 0;
   for (const fem::TetElements& e : w.elements) {
@@ -197,8 +303,8 @@ void internal_forces(World& w, double dt) {
 void reduce_rigid(World& w) {
   for (RigidBody& rb : w.rigid) {
     const Body& b = w.bodies[rb.body];
-    rb.force.setZero();
-    rb.torque.setZero();
+    rb.force = rb.volume_force;
+    rb.torque = rb.volume_torque;
     for (int i = b.node_begin; i < b.node_end; ++i) {
       rb.force += w.f.col(i);
       rb.torque += (w.x.col(i) - rb.centre).cross(w.f.col(i));
@@ -209,7 +315,11 @@ void reduce_rigid(World& w) {
 void compute_forces(World& w, double dt) {
   w.f.setZero();
   auto t0 = Clock::now();
-  contact_forces(w, dt);
+  if (w.law == ContactLaw::potential) {
+    contact_forces(w, dt);
+  } else {
+    volume_contact_forces(w);
+  }
   w.profile.contact += seconds_since(t0);
   t0 = Clock::now();
   internal_forces(w, dt);
@@ -271,9 +381,14 @@ World make_world(const WorldDef& def) {
   std::vector<Face> faces;
   int offset = 0;
   double young_max = 0;
+  const bool volume_law = def.contact.law != ContactLaw::potential;
+  std::vector<int> face_owner;  // per face: its tetrahedron among the contact tetrahedra
   for (std::size_t bi = 0; bi < def.bodies.size(); ++bi) {
     const BodyDef& d = def.bodies[bi];
     const std::string what = "body \"" + d.name + "\"";
+    if (volume_law && d.kind == BodyKind::deformable) {
+      throw InputError(what + ": the volume contact laws are for rigid and fixed bodies only");
+    }
     const int nn = static_cast<int>(d.mesh.nodes.cols());
     if (nn < 4 || d.mesh.tets.cols() == 0 || d.mesh.surface.cols() == 0) {
       throw InputError(what + ": mesh has no tetrahedra or no surface");
@@ -286,7 +401,8 @@ World make_world(const WorldDef& def) {
               .kind = d.kind,
               .node_begin = offset,
               .node_end = offset + nn,
-              .young = d.material.young};
+              .young = d.material.young,
+              .material = d.material};
     // The penalty scales with the bodies that deform or move; a fixed block only supplies the
     // target (a stiff steel block must not shrink the step of a softer rock particle).
     if (d.kind != BodyKind::fixed) young_max = std::max(young_max, d.material.young);
@@ -302,6 +418,9 @@ World make_world(const WorldDef& def) {
     Vec3 centre;
     Mat3 inertia;
     mass_properties(d.mesh, d.material.density, body.mass, centre, inertia);
+    body.radius = d.kind == BodyKind::fixed
+                      ? std::numeric_limits<double>::infinity()
+                      : contact::equivalent_radius(body.mass / d.material.density);
     if (d.kind != BodyKind::fixed) {
       for (int i = offset; i < offset + nn; ++i) w.mass[i] = lumped[i];
     }
@@ -329,9 +448,12 @@ World make_world(const WorldDef& def) {
     for (Eigen::Index k = 0; k < d.mesh.surface.size(); ++k)
       on_surface[d.mesh.surface.data()[k]] = 1;
     std::map<std::array<int, 3>, int> face_tet;
+    std::vector<int> contact_tet(static_cast<std::size_t>(d.mesh.tets.cols()), -1);
     for (Eigen::Index k = 0; k < d.mesh.tets.cols(); ++k) {
       const auto t = d.mesh.tets.col(k);
-      if (on_surface[t[0]] || on_surface[t[1]] || on_surface[t[2]] || on_surface[t[3]]) {
+      if (volume_law || on_surface[t[0]] || on_surface[t[1]] || on_surface[t[2]] ||
+          on_surface[t[3]]) {
+        contact_tet[static_cast<std::size_t>(k)] = static_cast<int>(st_body.size());
         for (int i = 0; i < 4; ++i) st_nodes.push_back(t[i] + offset);
         st_body.push_back(static_cast<int>(bi));
         // h_m = 3V/(4 A_m): the largest belongs to the smallest face.
@@ -368,6 +490,7 @@ World make_world(const WorldDef& def) {
       const auto t = d.mesh.tets.col(it->second);
       const double v = tet_volume(d.mesh.nodes.col(t[0]), d.mesh.nodes.col(t[1]),
                                   d.mesh.nodes.col(t[2]), d.mesh.nodes.col(t[3]));
+      face_owner.push_back(contact_tet[static_cast<std::size_t>(it->second)]);
       faces.push_back({.body = static_cast<int>(bi),
                        .nodes = {key[0] + offset, key[1] + offset, key[2] + offset},
                        .area = area,
@@ -385,6 +508,23 @@ World make_world(const WorldDef& def) {
   }
   w.penalty = def.contact.penalty > 0 ? def.contact.penalty : def.contact.alpha * young_max;
   w.friction = def.contact.friction;
+  w.law = def.contact.law;
+  w.kv = def.contact.kv;
+  if (w.law == ContactLaw::volume_linear && !(w.kv > 0)) {
+    throw InputError("contact: volume-linear needs a stiffness kv > 0 (N/m³)");
+  }
+  // Surface triangles by owning contact tetrahedron (CSR), for the volume laws' clipping.
+  w.tet_faces_begin.assign(w.surface_tet_body.size() + 1, 0);
+  for (const int t : face_owner) ++w.tet_faces_begin[static_cast<std::size_t>(t) + 1];
+  for (std::size_t k = 1; k < w.tet_faces_begin.size(); ++k)
+    w.tet_faces_begin[k] += w.tet_faces_begin[k - 1];
+  w.tet_faces.resize(face_owner.size());
+  {
+    std::vector<int> fill(w.tet_faces_begin.begin(), w.tet_faces_begin.end() - 1);
+    for (std::size_t f = 0; f < face_owner.size(); ++f)
+      w.tet_faces[static_cast<std::size_t>(fill[static_cast<std::size_t>(face_owner[f])]++)] =
+          static_cast<int>(f);
+  }
 
   // Skin: half the mean sub-tetrahedron height of the moving bodies' surface faces. Rebuilds
   // happen every ~skin/(2 v dt) steps; the extra candidates cost one box test each per step.

@@ -46,6 +46,11 @@ constexpr double kFdemSafety = 0.5;
 // particles of the study at 250 and 1000 triangles, 0.02–0.06 % at 0.1, for a cost that stays
 // a fraction of a second. Rigid-only scenes therefore default to 0.1.
 constexpr double kRigidSafety = 0.1;
+// The volume laws' step is 2/ω of the Hertz-equivalent pair at its peak (fdem/time_step.hpp),
+// about half the contact's duration, as for spheres, so the spheres' 0.01 resolves an impact in
+// about 200 steps: restitution 1 within 1e-4 and energy drift below 1e-4 for the faceted spheres
+// and the cube's vertex, edge and face (tests/fdem/test_volume_contact.cpp).
+constexpr double kVolumeSafety = 0.01;
 
 // Runaway penetration (an instability criterion beside the energy check). The potential of an
 // element rises from 0 on its faces to 1 at its centroid (contact/munjiza_potential.hpp), and the
@@ -142,14 +147,16 @@ struct Built {
 
 Built build(const scene::SceneDef& s) {
   const std::string where = s.file.string() + ": ";
-  if (s.contact.law != scene::ContactLaw::potential) {
+  const bool volume_law = s.contact.law == scene::ContactLaw::volume_hertz ||
+                          s.contact.law == scene::ContactLaw::volume_linear;
+  if (s.contact.law != scene::ContactLaw::potential && !volume_law) {
     throw InputError(where +
                      "contact.law: mesh bodies collide through \"potential\" (Munjiza's "
-                     "distributed potential); set contact.law to \"potential\"");
+                     "distributed potential), \"volume-hertz\" or \"volume-linear\"");
   }
   if (s.contact.restitution) {
     throw InputError(where +
-                     "contact.restitution: the potential law is elastic (energy is "
+                     "contact.restitution: the potential and volume laws are elastic (energy is "
                      "lost only to friction and element damping); remove the key");
   }
   Built out;
@@ -162,6 +169,12 @@ Built build(const scene::SceneDef& s) {
     const Material& mat = s.materials[body.material];
     friction = std::min(friction, mat.friction);
     fdem::BodyDef d{.name = body.name, .material = mat};
+    if (volume_law && body.model == scene::Model::fem && !body.fixed) {
+      throw InputError(key + "model: the volume laws are for rigid bodies (contact.law \"" +
+                       (s.contact.law == scene::ContactLaw::volume_hertz ? "volume-hertz"
+                                                                         : "volume-linear") +
+                       "\"); use model \"rigid\" or contact.law \"potential\"");
+    }
     if (const auto* mesh = std::get_if<scene::MeshShape>(&body.shape)) {
       d.mesh = centred_at(mesh_body(*mesh, key), body.position);
       d.kind = body.fixed ? fdem::BodyKind::fixed
@@ -222,9 +235,21 @@ Built build(const scene::SceneDef& s) {
   }
   out.def.gravity = s.gravity;
   out.def.contact.penalty = s.contact.penalty.value_or(0.0);
+  out.def.contact.law = s.contact.law == scene::ContactLaw::volume_hertz
+                            ? fdem::ContactLaw::volume_hertz
+                            : (s.contact.law == scene::ContactLaw::volume_linear
+                                   ? fdem::ContactLaw::volume_linear
+                                   : fdem::ContactLaw::potential);
+  out.def.contact.kv = s.contact.kv.value_or(0.0);
   // Coulomb μ: the scene's, else the smallest of the bodies' materials (as pair_friction does
   // for a pair).
   out.def.contact.friction = s.contact.friction.value_or(friction);
+  if (volume_law && out.def.contact.friction > 0) {
+    throw InputError(where + (s.contact.friction ? "contact.friction" : "materials") +
+                     ": the volume laws are frictionless in this build (friction " +
+                     fmt(out.def.contact.friction) +
+                     "); set contact.friction to 0");
+  }
   for (std::size_t i = 0; i < out.scene_body.size(); ++i) {
     if (out.scene_body[i] == s.record.body) out.def.record_body = static_cast<int>(i);
   }
@@ -245,8 +270,21 @@ const char* kind_name(fdem::BodyKind k) {
 
 }  // namespace
 
+std::vector<TetMesh> collision_meshes(const scene::SceneDef& s) {
+  Built built = build(s);
+  std::vector<TetMesh> out(s.bodies.size());
+  for (std::size_t i = 0; i < built.scene_body.size(); ++i) {
+    out[static_cast<std::size_t>(built.scene_body[i])] = std::move(built.def.bodies[i].mesh);
+  }
+  return out;
+}
+
 bool is_fdem_scene(const scene::SceneDef& s) {
-  if (s.contact.law == scene::ContactLaw::potential) return true;
+  if (s.contact.law == scene::ContactLaw::potential ||
+      s.contact.law == scene::ContactLaw::volume_hertz ||
+      s.contact.law == scene::ContactLaw::volume_linear) {
+    return true;
+  }
   return std::any_of(s.bodies.begin(), s.bodies.end(), [](const scene::BodyDef& b) {
     return std::holds_alternative<scene::MeshShape>(b.shape);
   });
@@ -280,7 +318,9 @@ RunResult run_fdem(const scene::SceneDef& s, const RunOptions& options) {
 
   bool deformable_moves = false;
   for (const fdem::Body& b : w.bodies) deformable_moves |= b.kind == fdem::BodyKind::deformable;
-  const double safety = s.dt_safety.value_or(deformable_moves ? kFdemSafety : kRigidSafety);
+  const double safety = s.dt_safety.value_or(
+      w.law != fdem::ContactLaw::potential ? kVolumeSafety
+                                           : (deformable_moves ? kFdemSafety : kRigidSafety));
   double dt = 0;
   bool auto_dt = false;
   if (options.dt_factor) {
@@ -434,7 +474,9 @@ RunResult run_fdem(const scene::SceneDef& s, const RunOptions& options) {
   if (!unstable.empty()) j["message"] = unstable;
   j["scene"] = s.name;
   j["model"] = "fdem";
-  j["contact_law"] = "potential";
+  j["contact_law"] = w.law == fdem::ContactLaw::potential      ? "potential"
+                     : w.law == fdem::ContactLaw::volume_hertz ? "volume-hertz"
+                                                               : "volume-linear";
   j["recorded_body"] = s.bodies[s.record.body].name;
   j["peak_force"] = im.peak_force;
   j["impulse"] = im.impulse;
@@ -456,8 +498,12 @@ RunResult run_fdem(const scene::SceneDef& s, const RunOptions& options) {
   j["dt_contact"] = std::isfinite(crit.contact) ? J(crit.contact) : J();
   j["dt_limited_by"] = crit.limited_by;
   j["dt_safety"] = auto_dt ? J(safety) : J();
-  j["penalty"] = w.penalty;
-  j["penalty_alpha"] = s.contact.penalty ? J() : J(built.def.contact.alpha);
+  if (w.law == fdem::ContactLaw::potential) {
+    j["penalty"] = w.penalty;
+    j["penalty_alpha"] = s.contact.penalty ? J() : J(built.def.contact.alpha);
+  } else if (w.law == fdem::ContactLaw::volume_linear) {
+    j["kv"] = w.kv;
+  }
   j["friction"] = w.friction;
   j["steps"] = w.steps;
   j["simulated_time"] = w.time;
@@ -484,6 +530,14 @@ RunResult run_fdem(const scene::SceneDef& s, const RunOptions& options) {
     bodies.push_back(e);
   }
   j["bodies"] = bodies;
+  if (w.bodies[w.record_body].kind == fdem::BodyKind::rigid) {
+    // The recorded rigid body's motion at the end (the rebound the peers compare).
+    const fdem::RigidBody& rb = w.rigid[w.bodies[w.record_body].rigid];
+    j["final_velocity"] = {rb.velocity.x(), rb.velocity.y(), rb.velocity.z()};
+    j["final_angular_velocity"] = {rb.omega.x(), rb.omega.y(), rb.omega.z()};
+    j["final_speed"] = rb.velocity.norm();
+    j["final_spin"] = rb.omega.norm();
+  }
   j["surface_tets"] = w.surface_tets.cols();
   return result;
 }

@@ -62,7 +62,7 @@ Shape parse_shape(const JsonReader& s) {
 }
 
 ContactDef parse_contact(const JsonReader& c) {
-  c.only_keys({"law", "kn", "kt", "penalty", "friction", "restitution"});
+  c.only_keys({"law", "kn", "kt", "penalty", "kv", "friction", "restitution"});
   ContactDef out;
   const std::string law = c.string("law");
   if (law == "hertz") {
@@ -74,13 +74,22 @@ ContactDef parse_contact(const JsonReader& c) {
     out.kn = c.positive("kn");
   } else if (law == "potential") {
     out.law = ContactLaw::potential;
+  } else if (law == "volume-hertz") {
+    out.law = ContactLaw::volume_hertz;
+  } else if (law == "volume-linear") {
+    out.law = ContactLaw::volume_linear;
+    if (!c.has("kv"))
+      c.fail("kv", "volume-linear needs kv, the volumetric stiffness in N/m³ (F_n = kv · V)");
+    out.kv = c.positive("kv");
   } else {
-    const std::string near =
-        io::closest_key(law, {"hertz", "hertz-mindlin", "linear", "potential"});
+    const std::string near = io::closest_key(
+        law, {"hertz", "hertz-mindlin", "linear", "potential", "volume-hertz", "volume-linear"});
     c.fail("law", "unknown contact law \"" + law + "\"" +
                       (near.empty() ? "" : " (did you mean \"" + near + "\"?)") +
-                      "; expected hertz, hertz-mindlin, linear or potential");
+                      "; expected hertz, hertz-mindlin, linear, potential, volume-hertz or "
+                      "volume-linear");
   }
+  if (c.has("kv") && !out.kv) c.fail("kv", "only the volume-linear law takes kv");
   if (c.has("kn") && !out.kn) c.fail("kn", "only the linear law takes kn");
   if (c.has("kt")) {
     if (out.law != ContactLaw::linear) c.fail("kt", "only the linear law takes kt");

@@ -46,13 +46,14 @@ struct BodyDef {
   double damping_ratio = 0;
 };
 
-enum class ContactLaw { hertz, hertz_mindlin, linear, potential };
+enum class ContactLaw { hertz, hertz_mindlin, linear, potential, volume_hertz, volume_linear };
 
 struct ContactDef {
   ContactLaw law = ContactLaw::hertz_mindlin;
   std::optional<double> kn;           // linear: normal stiffness, N/m
   std::optional<double> kt;           // linear: tangential stiffness, N/m (default 2/7 kn)
   std::optional<double> penalty;      // potential: penalty, Pa (default α·E)
+  std::optional<double> kv;           // volume-linear: volumetric stiffness, N/m³
   std::optional<double> friction;     // overrides the materials' pair friction
   std::optional<double> restitution;  // overrides the materials' pair restitution
 };
