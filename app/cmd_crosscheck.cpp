@@ -321,6 +321,10 @@ int cmd_crosscheck(const fs::path& scene_file, const fs::path& out, const std::s
   if (!fs::is_regular_file(script))
     throw InputError("crosscheck: " + script.string() + ": YADE translator script not found");
 
+  // A scene YADE cannot carry (a law without a counterpart, a non-convex polyhedron) is refused
+  // before anything runs or is written.
+  (void)yade_input(s, 0.0, 0);
+
   // Nothing from an earlier cross-check may be mistaken for this one's.
   fs::create_directories(out / "yade");
   for (const char* f : {"comparison.json"}) fs::remove(out / f);
@@ -428,8 +432,9 @@ void add_crosscheck_command(CLI::App& app, Action& action) {
   auto args = std::make_shared<Args>();
   auto* cc = app.add_subcommand(
       "crosscheck",
-      "Run a scene (or a validation case's scene) in asperity and in YADE: writes "
-      "DIR/asperity/, DIR/yade/, DIR/comparison.json");
+      "Run a scene (or a validation case's scene) in asperity and in YADE: rigid spheres, "
+      "planes and boxes, or rigid convex polyhedra under volume-linear (YADE's Polyhedra); "
+      "writes DIR/asperity/, DIR/yade/, DIR/comparison.json");
   cc->add_option("scene", args->scene, "Scene file, or a validation case file")->required();
   cc->add_option("--out", args->out, "Output folder")->required();
   cc->add_option("--yade", args->yade, "YADE executable (default: yade on PATH)");

@@ -208,7 +208,7 @@ BodyOverlap& overlap_of(World& w, std::vector<BodyOverlap>& now, int a, int b) {
 void clip_owned_faces(const World& w, int owner, const contact::TetNodes& target,
                       const Vec3& origin, contact::OverlapSide& side) {
   for (int k = w.tet_faces_begin[owner]; k < w.tet_faces_begin[owner + 1]; ++k) {
-    const auto f = w.face_nodes.col(w.tet_faces[k]);
+    const auto f = w.face_outward.col(w.tet_faces[k]);
     contact::clip_triangle_in_tet({w.x.col(f[0]), w.x.col(f[1]), w.x.col(f[2])}, target, origin,
                                   side);
   }
@@ -375,7 +375,8 @@ World make_world(const WorldDef& def) {
   // contact time step.
   struct Face {
     int body;
-    int nodes[3];
+    int nodes[3];     // sorted
+    int oriented[3];  // as the surface lists it (outward)
     double area, height;
   };
   std::vector<Face> faces;
@@ -493,6 +494,8 @@ World make_world(const WorldDef& def) {
       face_owner.push_back(contact_tet[static_cast<std::size_t>(it->second)]);
       faces.push_back({.body = static_cast<int>(bi),
                        .nodes = {key[0] + offset, key[1] + offset, key[2] + offset},
+                       .oriented = {d.mesh.surface(0, k) + offset, d.mesh.surface(1, k) + offset,
+                                    d.mesh.surface(2, k) + offset},
                        .area = area,
                        .height = 0.75 * v / area});
     }
@@ -535,6 +538,7 @@ World make_world(const WorldDef& def) {
   }
   w.skin = hn > 0 ? 0.5 * hsum / hn : 0;
   w.face_nodes.resize(3, static_cast<Eigen::Index>(faces.size()));
+  w.face_outward.resize(3, static_cast<Eigen::Index>(faces.size()));
   w.face_stiffness.resize(faces.size());
   std::vector<double> h_min(w.bodies.size(), 1e300);  // smallest height on any other body
   for (const Face& f : faces) {
@@ -545,6 +549,8 @@ World make_world(const WorldDef& def) {
   for (std::size_t k = 0; k < faces.size(); ++k) {
     const Face& f = faces[k];
     w.face_nodes.col(static_cast<Eigen::Index>(k)) << f.nodes[0], f.nodes[1], f.nodes[2];
+    w.face_outward.col(static_cast<Eigen::Index>(k)) << f.oriented[0], f.oriented[1],
+        f.oriented[2];
     // Stiffness of the face pressed into another body: the overlap A·d sits in this face's
     // sub-tetrahedron and in the other body's, ∇φ = 1/height in each, so dF/dd = p A (1/h + 1/h').
     const double other = h_min[f.body] < 1e299 ? 1.0 / h_min[f.body] : 0.0;

@@ -135,7 +135,7 @@ struct World {
   double friction = 0;
   ContactLaw law = ContactLaw::potential;
   double kv = 0;  // N/m³
-  // Volume laws: the surface triangles (columns of face_nodes) inside each contact tetrahedron,
+  // Volume laws: the surface triangles (columns of face_outward) inside each contact tetrahedron,
   // CSR: tet k owns tet_faces[tet_faces_begin[k] .. tet_faces_begin[k+1]); and the overlaps of the
   // body pairs in contact (kept across steps for volume-linear's work).
   std::vector<int> tet_faces_begin, tet_faces;
@@ -143,6 +143,7 @@ struct World {
   // Surface triangles (global nodes) and the penalty stiffness of each pressed into another
   // body, N/m (fdem/time_step.hpp).
   Eigen::Matrix3Xi face_nodes;
+  Eigen::Matrix3Xi face_outward;  // the same triangles in the surface's outward order
   std::vector<double> face_stiffness;
 
   // Broad phase (fdem/broad_phase.hpp): Verlet list of tetrahedron pairs whose boxes, grown by

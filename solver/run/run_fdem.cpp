@@ -200,9 +200,10 @@ Built build(const scene::SceneDef& s) {
       planes.emplace_back(static_cast<int>(b), plane);
       continue;  // sized once every other body is known
     } else {
-      throw InputError(key +
-                       "shape: spheres cannot share a scene with mesh bodies (mesh the "
-                       "sphere: shape \"mesh\")");
+      throw InputError(key + (volume_law ? "shape: the volume laws need rigid mesh bodies (a "
+                                           "faceted sphere is shape \"mesh\")"
+                                         : "shape: spheres cannot share a scene with mesh bodies "
+                                           "(mesh the sphere: shape \"mesh\")"));
     }
     for (Eigen::Index i = 0; i < d.mesh.nodes.cols(); ++i) extent.extend(d.mesh.nodes.col(i));
     out.def.bodies.push_back(std::move(d));

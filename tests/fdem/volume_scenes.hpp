@@ -1,5 +1,5 @@
 // Rigid polyhedra under the volume laws, shared by the tests and the benchmarks: a faceted sphere
-// (geodesic icosphere, star-tetrahedralized) and a cube, dropped on a fixed block or on each
+// (geodesic icosphere) and a cube, dropped on a fixed block or on each
 // other; the smooth-sphere reference of the same law; and a loop that runs one impact.
 #pragma once
 
@@ -13,6 +13,7 @@
 #include "fdem/structured_mesh.hpp"
 #include "fdem/time_step.hpp"
 #include "geometry/geodesic_sphere.hpp"
+#include "geometry/tetrahedralize.hpp"
 
 namespace asperity::fdem::volume_scenes {
 
@@ -25,28 +26,14 @@ inline Material stone() {
           .restitution = 1};
 }
 
-// A closed convex surface, tetrahedralized as a star about its vertex centroid (one tetrahedron
-// per face): the surface is kept exactly.
-inline TetMesh star_mesh(const SurfaceMesh& s) {
-  TetMesh m;
-  const auto nv = s.vertices.cols();
-  m.nodes.resize(3, nv + 1);
-  m.nodes.leftCols(nv) = s.vertices;
-  m.nodes.col(nv) = s.vertices.rowwise().mean();
-  m.tets.resize(4, s.faces.cols());
-  for (Eigen::Index f = 0; f < s.faces.cols(); ++f) {
-    // Outward face (a, b, c) and the inner point o: (a, c, b, o) has positive volume.
-    m.tets.col(f) << s.faces(0, f), s.faces(2, f), s.faces(1, f), static_cast<int>(nv);
-  }
-  m.surface = s.faces;
-  return m;
-}
-
-// Faceted sphere: radius r, geodesic frequency n (20 n² faces), centred at `centre`.
+// Faceted sphere: radius r, geodesic frequency n (20 n² faces), centred at `centre`,
+// tetrahedralized by TetGen keeping the facets (geometry/tetrahedralize.hpp): its tetrahedra are
+// compact, so the broad phase pairs only those near the contact (a star of slivers from the
+// centre would pair every cap tetrahedron with every other).
 inline TetMesh faceted_sphere(double r, int n, const Vec3& centre) {
   SurfaceMesh s = geometry::geodesic_sphere(n);
   s.vertices *= r;
-  TetMesh m = star_mesh(s);
+  TetMesh m = geometry::tetrahedralize(s);
   m.nodes.colwise() += centre;
   return m;
 }
