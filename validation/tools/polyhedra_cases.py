@@ -99,7 +99,7 @@ def mesh_file(name, v, f):
 
 
 def case(name, description, mesh, velocity, expected, law="volume-linear", duration=None,
-         young=5e10, tags=("polyhedra", "volume-linear", "yade")):
+         young=5e10, density=DENSITY, poisson=0.25, tags=("polyhedra", "volume-linear", "yade")):
     contact = {"law": law}
     if law == "volume-linear":
         contact["kv"] = KV
@@ -107,7 +107,7 @@ def case(name, description, mesh, velocity, expected, law="volume-linear", durat
         "name": name,
         "duration": duration,
         "dt": "auto",
-        "materials": {"granite": {"density": DENSITY, "young": young, "poisson": 0.25,
+        "materials": {"granite": {"density": density, "young": young, "poisson": poisson,
                                   "friction": 0.0, "restitution": 1.0}},
         "bodies": [
             {"name": "particle", "material": "granite", "model": "rigid",
@@ -122,9 +122,19 @@ def case(name, description, mesh, velocity, expected, law="volume-linear", durat
             "expected": expected}
 
 
-def place(v, gap):
-    """Centroid-independent: the lowest point `gap` above z = 0; returns the centroid's z."""
-    return gap - v[:, 2].min()
+def centroid_of(v, f):
+    """Volume centroid (a scene places a mesh body by it)."""
+    vol, first = 0.0, np.zeros(3)
+    for a, b, c in f:
+        t = np.dot(v[a], np.cross(v[b], v[c])) / 6.0
+        vol += t
+        first += t * (v[a] + v[b] + v[c]) / 4.0
+    return first / vol
+
+
+def place(v, f, gap):
+    """The centroid's z that puts the lowest point `gap` above z = 0."""
+    return gap - (v[:, 2].min() - centroid_of(v, f)[2])
 
 
 def main():
@@ -142,7 +152,7 @@ def main():
     particle = read_off(os.path.join(ROOT, "data", "meshes", "particle-seed3-320.off"))
     bodies["hull-seed3"] = hull_mesh(particle - particle.mean(axis=0))
     sphere_v, sphere_f = geodesic_sphere(16)
-    bodies["geodesic-sphere-16"] = (sphere_v * 0.02, sphere_f)
+    bodies["geodesic-sphere-16"] = (sphere_v * 0.05, sphere_f)
 
     gap = 2e-5
     written = []
@@ -150,7 +160,7 @@ def main():
         path = mesh_file(name, v, f)
         vol = volume_of(v, f)
         mass = DENSITY * vol
-        centroid_z = place(v - v.mean(axis=0), gap)
+        centroid_z = place(v, f, gap)
         if name == "geodesic-sphere-16":
             continue
         for kind, vel in (("straight", [0.0, 0.0, -1.0]), ("oblique", [0.6, 0.0, -0.8])):
@@ -191,12 +201,15 @@ def main():
             c["scene"]["bodies"][0]["position"] = [0.0, 0.0, centroid_z]
             written.append(c)
     # The faceted sphere under volume-hertz: Hertz within 3 %.
+    # The regime of tests/fdem/test_volume_refinement.cpp: a soft sphere (E = 10 MPa, ρ = 2500,
+    # R = 0.05 m) at 0.18 m/s, peak approach δ ≈ 0.02 R, so the contact disc (a ≈ 0.2 R) spans
+    # about six facets at frequency 16.
     v, f = bodies["geodesic-sphere-16"]
-    rs = 0.02
-    vol = volume_of(v, f)
-    mass = DENSITY * vol
-    e_star = 1 / (2 * (1 - 0.25 ** 2) / 5e10)  # plane of the same granite
-    vn = 0.3
+    rs = 0.05
+    density, young, poisson = 2500.0, 1e7, 0.3
+    mass = density * 4 / 3 * math.pi * rs ** 3
+    e_star = 1 / (2 * (1 - poisson ** 2) / young)  # plane of the same material
+    vn = 0.18
     d = (15 * mass * vn * vn / (16 * e_star * math.sqrt(rs))) ** 0.4
     hertz_force = 4 / 3 * e_star * math.sqrt(rs) * d ** 1.5
     hertz_time = 2.9432 * d / vn
@@ -212,10 +225,11 @@ def main():
                         "why": "volume-hertz is the gradient of W(V): elastic, to the integrator's error"},
         "energy_drift": {"max": 1e-3, "why": "conservative law, symplectic step: the issue's bound"},
     }
-    c = case(name, "Rigid faceted sphere (geodesic, 5120 faces, R = 0.02 m) on a plane under "
+    c = case(name, "Rigid faceted sphere (geodesic, 5120 faces, R = 0.05 m, E = 10 MPa) on a plane under "
              "volume-hertz, against Hertz", mesh_file("geodesic-sphere-16", v, f), [0, 0, -vn],
-             expected, law="volume-hertz", duration=0.005, tags=("polyhedra", "volume-hertz", "hertz"))
-    c["scene"]["bodies"][0]["position"] = [0.0, 0.0, place(v - v.mean(axis=0), gap)]
+             expected, law="volume-hertz", duration=0.05, young=young, density=density,
+             poisson=poisson, tags=("polyhedra", "volume-hertz", "hertz"))
+    c["scene"]["bodies"][0]["position"] = [0.0, 0.0, place(v, f, gap)]
     written.append(c)
     for c in written:
         with open(os.path.join(CASE_DIR, c["case"] + ".json"), "w") as out:
