@@ -215,8 +215,10 @@ void clip_owned_faces(const World& w, int owner, const contact::TetNodes& target
 }
 
 // Volume laws: every candidate pair of tetrahedra adds its clipped surface integrals to its body
-// pair; each body pair in contact then gets F_A = −s S_A and torque −s M_A about A's centre, with
-// s = W'(V) (volume-hertz) or k_v V / |S_A| (volume-linear) (contact/overlap_volume.hpp).
+// pair; each body pair in contact then gets F_A = −s S_A with s = W'(V) (volume-hertz) or
+// k_v V / |S_A| (volume-linear), and the torque −s M_A about A's centre (volume-hertz: the exact
+// gradient) or that of F_A at the overlap's centroid (volume-linear, as YADE applies it)
+// (contact/overlap_volume.hpp).
 void volume_contact_forces(World& w) {
   w.contact_energy = 0;
   w.record_force.setZero();
@@ -266,10 +268,14 @@ void volume_contact_forces(World& w) {
       const Body& bd = w.bodies[body];
       if (bd.kind != BodyKind::rigid) continue;
       RigidBody& rb = w.rigid[bd.rigid];
-      // M(c) = M(o) − (c − o) × S.
-      const Vec3 moment = side->moment - (rb.centre - o.origin).cross(side->area);
       rb.volume_force += force;
-      rb.volume_torque -= slope * moment;
+      if (w.law == ContactLaw::volume_hertz) {
+        // The gradient of W under rotation: −W' M(c), M(c) = M(o) − (c − o) × S.
+        rb.volume_torque -= slope * (side->moment - (rb.centre - o.origin).cross(side->area));
+      } else {
+        // YADE's volumetric law applies the force at the overlap's centroid.
+        rb.volume_torque += (ov.centroid - rb.centre).cross(force);
+      }
     }
     w.contact_energy += o.energy;
     if (o.a == w.record_body || o.b == w.record_body) {

@@ -284,7 +284,7 @@ def main():
         spec = json.load(fh)
     if spec["law"] == "volume-linear":
         # Rigid polyhedra: their own translator beside this file (yade_polyhedra.py).
-        sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
+        sys.path.insert(0, os.path.dirname(os.path.abspath(sys.argv[0])))  # yade -x sets argv[0]
         import yade_polyhedra
         yade_polyhedra.run(spec, out)
         return

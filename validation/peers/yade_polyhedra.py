@@ -17,8 +17,8 @@
 #                 + Law2_PolyhedraGeom_PolyhedraPhys_Volumetric (volumePower 1): F_n = kn V with
 #                 kn = 1/(1/young₁ + 1/young₂), so every PolyhedraMat gets young = 2 kv and
 #                 kn = kv; frictionAngle 0 (asperity's volume laws are frictionless).
-#   s (overlap) -> PolyhedraGeom.equivalentPenetrationDepth, V over the cross-section: asperity's
-#                 recorded depth V/|S|; -1e300 while apart, as asperity records it.
+#   s (overlap) -> PolyhedraGeom.penetrationVolume / equivalentCrossSection: asperity's recorded
+#                 depth V/|S|; -1e300 while apart, as asperity records it.
 import json
 import os
 import sys
@@ -30,7 +30,7 @@ from yade.wrapper import (Bo1_Polyhedra_Aabb, ForceResetter, Ig2_Polyhedra_Polyh
                           InsertionSortCollider, InteractionLoop,
                           Ip2_PolyhedraMat_PolyhedraMat_PolyhedraPhys,
                           Law2_PolyhedraGeom_PolyhedraPhys_Volumetric, NewtonIntegrator, PolyhedraMat)
-from yade.minieigen import Vector3
+from yade.minieigenHP import Vector3
 
 
 class MappingError(Exception):
@@ -72,10 +72,15 @@ def contacts_of(rid):
     return [i for i in O.interactions.withBody(rid) if i.isReal]
 
 
+LAST = {}  # the latest contact's partner and normal: the rebound is measured along it
+
+
 def record_row(rid):
-    """t, force on the recorded body, its deepest equivalent depth and approach speed."""
+    """t, force on the recorded body, its overlap's mean depth V/A (A YADE's cross-section) and
+    the approach speed along the contact normal (the last contact's while apart, so that the
+    separation speed is read where the contact ends)."""
     f = O.forces.f(rid)
-    s, rate = -1e300, 0.0
+    s = -1e300
     for i in contacts_of(rid):
         g = i.geom
         if g.penetrationVolume <= 0:
@@ -85,14 +90,19 @@ def record_row(rid):
         # Normal from the partner into the recorded body.
         if n.dot(O.bodies[rid].state.pos - O.bodies[other].state.pos) < 0:
             n = -n
-        v = O.bodies[rid].state.vel - O.bodies[other].state.vel
-        depth = g.equivalentPenetrationDepth
+        depth = g.penetrationVolume / g.equivalentCrossSection if g.equivalentCrossSection > 0 else 0
         if depth > s:
-            s, rate = depth, -v.dot(n)
+            s = depth
+            LAST.update(other=other, n=n)
+    rate = 0.0
+    if LAST:
+        v = O.bodies[rid].state.vel - O.bodies[LAST["other"]].state.vel
+        rate = -v.dot(LAST["n"])
     return [O.time, f[0], f[1], f[2], s, rate]
 
 
 def run(spec, outdir):
+    LAST.clear()
     ids = build(spec)
     rid = ids[spec["record_body"]]
     steps = int(spec["steps"])
@@ -106,11 +116,11 @@ def run(spec, outdir):
         rows.append(record_row(rid))
         rows[-1][0] = O.time - O.dt
         in_contact.append(rows[-1][4] > -1e299)
-    in_contact = in_contact[:steps]
         for i in contacts_of(rid):
             if not stiffness and i.phys.kn > 0:
                 stiffness.append({"kn": i.phys.kn, "expected": spec["kv"],
                                   "rel_diff": abs(i.phys.kn / spec["kv"] - 1)})
+    in_contact = in_contact[:steps]
     final = {b["name"]: {"velocity": list(O.bodies[ids[b["name"]]].state.vel),
                          "angular_velocity": list(O.bodies[ids[b["name"]]].state.angVel)}
              for b in spec["bodies"]}
