@@ -48,7 +48,6 @@ fdem::WorldDef rock_on_block(const TetMesh& mesh, double depth, double speed) {
                         .velocity = Vec3(0, 0, -speed)});
   def.bodies.push_back(fdem::volume_scenes::block(0.05, kGranite));
   def.contact.law = fdem::ContactLaw::volume_hertz;
-  def.record_body = 0;
   return def;
 }
 

@@ -12,6 +12,7 @@
 #include <Eigen/Eigenvalues>
 
 #include "contact/volume_hertz.hpp"
+#include "core/central_difference.hpp"
 
 namespace asperity::fdem {
 
@@ -178,9 +179,7 @@ double rigid_omega2(const World& w, const RigidBody& rb, const ContactFaces& c) 
 }
 
 double damped_step(double omega, double beta) {
-  if (!(omega > 0)) return std::numeric_limits<double>::infinity();
-  const double xi = 0.5 * beta * omega;
-  return 2.0 / omega * (std::sqrt(1 + xi * xi) - xi);
+  return damped_critical_step(omega, 0.5 * beta * omega);  // ξ = β ω / 2 (Kelvin–Voigt)
 }
 
 }  // namespace

@@ -6,8 +6,8 @@
 #include <vector>
 
 #include "core/mesh.hpp"
-
-#include "run/run_scene.hpp"
+#include "run/run_result.hpp"
+#include "run/step_policy.hpp"
 #include "scene/scene.hpp"
 
 namespace asperity::run {
@@ -22,5 +22,7 @@ RunResult run_fdem(const scene::SceneDef& scene, const RunOptions& options);
 // through the geometry pipeline and placed at its position, a box as its block, a plane as the
 // fixed slab under it), by scene body index: what a peer's translator must reproduce.
 std::vector<TetMesh> collision_meshes(const scene::SceneDef& scene);
+// The step run_fdem would take (world built, not stepped).
+StepChoice fdem_step(const scene::SceneDef& scene, const RunOptions& options);
 
 }  // namespace asperity::run

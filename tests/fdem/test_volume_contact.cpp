@@ -81,8 +81,7 @@ double cube_force(const Mat3& rot, double depth, ContactLaw law) {
   def.bodies.push_back(vs::block(a, vs::stone()));
   def.contact.law = law;
   def.contact.kv = 1e9;
-  def.record_body = 0;
-  return make_world(def).record_force.norm();
+  return make_world(def).contacts.force.col(0).norm();
 }
 
 // Exponent p of F ∝ δ^p from δ = 1e-4 a and 1e-3 a. The overlap of a vertex is a tetrahedron
@@ -127,7 +126,6 @@ TEST(VolumeLaws, CubeDropsAreElastic) {
                           .velocity = Vec3(0, 0, -v)});
     def.bodies.push_back(vs::block(a, vs::stone()));
     def.contact.law = ContactLaw::volume_hertz;
-    def.record_body = 0;
     World w = make_world(def);
     const vs::Impact im = vs::run_impact(w, 1.0);
     ASSERT_GT(im.peak_force, 0);
@@ -156,7 +154,6 @@ TEST(VolumeLaws, TumblingCubesConserveMomentumAndEnergy) {
                         .material = vs::stone(),
                         .velocity = Vec3(-0.5, 0, 0)});
   def.contact.law = ContactLaw::volume_hertz;
-  def.record_body = 0;
   World w = make_world(def);
   auto angular = [&] {
     Vec3 l = Vec3::Zero();

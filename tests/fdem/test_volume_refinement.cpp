@@ -38,7 +38,6 @@ Errors run_on_plane(int n, const vs::SmoothImpact& ref, double& e_out, double& d
                         .velocity = Vec3(0, 0, -kV)});
   def.bodies.push_back(vs::block(kR, m));
   def.contact.law = ContactLaw::volume_hertz;
-  def.record_body = 0;
   World w = make_world(def);
   const vs::Impact im = vs::run_impact(w, 1.0);
   e_out = -im.v_after.z() / im.v_before.z();
@@ -60,7 +59,6 @@ Errors run_two_spheres(int n, const vs::SmoothImpact& ref, double& e_out, double
                         .material = m,
                         .velocity = Vec3(-kV / 2, 0, 0)});
   def.contact.law = ContactLaw::volume_hertz;
-  def.record_body = 0;
   World w = make_world(def);
   const vs::Impact im = vs::run_impact(w, 1.0);
   e_out = -(im.v_after.x() - body_velocity(w, 1).x()) / kV;

@@ -78,22 +78,22 @@ struct Impact {
 // Steps at dt = safety × the predicted step until the recorded body has touched and separated.
 // The duration counts whole steps with a force plus the fractions before the first and after
 // the last one found by linear interpolation of the overlap's mean depth V/|S| (World::
-// record_depth), which is linear in time at both ends.
+// contacts.overlap), which is linear in time at both ends. The recorded body is body 0.
 inline Impact run_impact(World& w, double t_max, double safety = 0.01) {
   Impact out;
   out.dt = safety * critical_step(w).critical;
   w.want_energy = true;
   const double e0 = energy(w).total();
-  out.v_before = body_velocity(w, w.record_body);
+  out.v_before = body_velocity(w, 0);
   long touching_steps = 0;
   double t_first = 0, d_first = 0, d_second = 0, d_prev = 0, d_last = 0, d_before_last = 0;
   while (w.time < t_max && w.failure.empty()) {
     step(w, out.dt);
-    const double f = w.record_force.norm();
+    const double f = w.contacts.force.col(0).norm();
     out.peak_force = std::max(out.peak_force, f);
     out.drift = std::max(out.drift, std::abs(energy(w).total() - e0) / e0);
     if (f > 0) {
-      const double d = w.record_depth;
+      const double d = w.contacts.overlap[0];
       if (touching_steps == 0) t_first = w.time, d_first = d;
       if (touching_steps == 1) d_second = d;
       d_before_last = d_prev, d_last = d;
@@ -109,7 +109,7 @@ inline Impact run_impact(World& w, double t_max, double safety = 0.01) {
                        out.dt * d_last / (d_before_last - d_last);
     out.duration = end - start;
   }
-  out.v_after = body_velocity(w, w.record_body);
+  out.v_after = body_velocity(w, 0);
   out.steps = w.steps;
   return out;
 }
