@@ -35,11 +35,11 @@ namespace asperity::contact {
 // Surface integrals over the part of one body's surface inside the other, about the origin o
 // given to the kernel (o near the contact keeps round-off small: the terms are |x − o| · area).
 struct OverlapSide {
-  double volume3 = 0;                         // ∫ (x − o)·n dS, m³ (three times its share of V)
-  Vec3 area = Vec3::Zero();                   // S = ∫ n dS, m²
-  Vec3 moment = Vec3::Zero();                 // ∫ (x − o) × n dS, m³
-  Vec3 centroid_moment = Vec3::Zero();        // ½ ∫ (x − o)_i² n_i dS per i, m⁴
-  double surface = 0;                         // ∫ dS, m² (area of this surface inside the other)
+  double volume3 = 0;                   // ∫ (x − o)·n dS, m³ (three times its share of V)
+  Vec3 area = Vec3::Zero();             // S = ∫ n dS, m²
+  Vec3 moment = Vec3::Zero();           // ∫ (x − o) × n dS, m³
+  Vec3 centroid_moment = Vec3::Zero();  // ½ ∫ (x − o)_i² n_i dS per i, m⁴
+  double surface = 0;                   // ∫ dS, m² (area of this surface inside the other)
 
   OverlapSide& operator+=(const OverlapSide& s) {
     volume3 += s.volume3;

@@ -7,8 +7,8 @@
 #include <cmath>
 #include <limits>
 #include <map>
-#include <tuple>
 #include <sstream>
+#include <tuple>
 
 #include "contact/munjiza_potential.hpp"
 #include "contact/overlap_volume.hpp"
@@ -542,8 +542,7 @@ World make_world(const WorldDef& def) {
   for (std::size_t k = 0; k < faces.size(); ++k) {
     const Face& f = faces[k];
     w.face_nodes.col(static_cast<Eigen::Index>(k)) << f.nodes[0], f.nodes[1], f.nodes[2];
-    w.face_outward.col(static_cast<Eigen::Index>(k)) << f.oriented[0], f.oriented[1],
-        f.oriented[2];
+    w.face_outward.col(static_cast<Eigen::Index>(k)) << f.oriented[0], f.oriented[1], f.oriented[2];
     // Stiffness of the face pressed into another body: the overlap A·d sits in this face's
     // sub-tetrahedron and in the other body's, ∇φ = 1/height in each, so dF/dd = p A (1/h + 1/h').
     const double other = h_min[f.body] < 1e299 ? 1.0 / h_min[f.body] : 0.0;

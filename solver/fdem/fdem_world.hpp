@@ -8,11 +8,11 @@
 
 #include <Eigen/Core>
 
+#include "contact/overlap_volume.hpp"
 #include "core/body_contacts.hpp"
 #include "core/energy.hpp"
 #include "core/material.hpp"
 #include "core/mesh.hpp"
-#include "contact/overlap_volume.hpp"
 #include "core/profile.hpp"
 #include "core/vec.hpp"
 #include "fem/tet_elements.hpp"

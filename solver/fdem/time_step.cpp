@@ -348,9 +348,9 @@ CriticalStep volume_critical_step(const World& w) {
       // Either orientation of the same plane is the same patch.
       if (n.x() < 0 || (n.x() == 0 && (n.y() < 0 || (n.y() == 0 && n.z() < 0)))) n = -n;
       const double q = 1e6;
-      const auto key = std::array<long long, 5>{
-          static_cast<long long>(b), std::llround(n.x() * q), std::llround(n.y() * q),
-          std::llround(n.z() * q), std::llround(n.dot(a) / reach[b] * q)};
+      const auto key = std::array<long long, 5>{static_cast<long long>(b), std::llround(n.x() * q),
+                                                std::llround(n.y() * q), std::llround(n.z() * q),
+                                                std::llround(n.dot(a) / reach[b] * q)};
       patches[key] += 0.5 * area2;
     }
     for (const auto& [key, area] : patches) {
@@ -364,8 +364,9 @@ CriticalStep volume_critical_step(const World& w) {
     for (std::size_t j = 0; j < w.bodies.size(); ++j) {
       if (j == i) continue;
       const Body &bi = w.bodies[i], &bj = w.bodies[j];
-      const double m = std::isinf(mass_eff[j]) ? mass_eff[i]
-                                               : mass_eff[i] * mass_eff[j] / (mass_eff[i] + mass_eff[j]);
+      const double m = std::isinf(mass_eff[j])
+                           ? mass_eff[i]
+                           : mass_eff[i] * mass_eff[j] / (mass_eff[i] + mass_eff[j]);
       const double v = speed[i] + speed[j] + fall;
       double k = 0;
       if (w.law == ContactLaw::volume_hertz) {

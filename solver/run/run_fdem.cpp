@@ -87,10 +87,10 @@ Built build(const scene::SceneDef& s) {
     friction = std::min(friction, mat.friction);
     fdem::BodyDef d{.name = body.name, .material = mat};
     if (volume_law && body.model == scene::Model::fem && !body.fixed) {
-      throw InputError(key + "model: the volume laws are for rigid bodies (contact.law \"" +
-                       (s.contact.law == scene::ContactLaw::volume_hertz ? "volume-hertz"
-                                                                         : "volume-linear") +
-                       "\"); use model \"rigid\" or contact.law \"potential\"");
+      throw InputError(
+          key + "model: the volume laws are for rigid bodies (contact.law \"" +
+          (s.contact.law == scene::ContactLaw::volume_hertz ? "volume-hertz" : "volume-linear") +
+          "\"); use model \"rigid\" or contact.law \"potential\"");
     }
     if (const auto* mesh = std::get_if<scene::MeshShape>(&body.shape)) {
       d.mesh = centred_at(mesh_body(*mesh, key), body.position);
@@ -147,11 +147,11 @@ Built build(const scene::SceneDef& s) {
   }
   out.def.gravity = s.gravity;
   out.def.contact.penalty = s.contact.penalty.value_or(0.0);
-  out.def.contact.law = s.contact.law == scene::ContactLaw::volume_hertz
-                            ? fdem::ContactLaw::volume_hertz
-                            : (s.contact.law == scene::ContactLaw::volume_linear
-                                   ? fdem::ContactLaw::volume_linear
-                                   : fdem::ContactLaw::potential);
+  out.def.contact.law =
+      s.contact.law == scene::ContactLaw::volume_hertz
+          ? fdem::ContactLaw::volume_hertz
+          : (s.contact.law == scene::ContactLaw::volume_linear ? fdem::ContactLaw::volume_linear
+                                                               : fdem::ContactLaw::potential);
   out.def.contact.kv = s.contact.kv.value_or(0.0);
   if (s.contact.penalty_alpha) out.def.contact.alpha = *s.contact.penalty_alpha;
   // Coulomb μ: the scene's, else the smallest of the bodies' materials (as pair_friction does
@@ -160,8 +160,7 @@ Built build(const scene::SceneDef& s) {
   if (volume_law && out.def.contact.friction > 0) {
     throw InputError(where + (s.contact.friction ? "contact.friction" : "materials") +
                      ": the volume laws are frictionless in this build (friction " +
-                     fmt(out.def.contact.friction) +
-                     "); set contact.friction to 0");
+                     fmt(out.def.contact.friction) + "); set contact.friction to 0");
   }
   for (std::size_t i = 0; i < out.scene_body.size(); ++i) {
     if (out.scene_body[i] == s.record.body) out.record = static_cast<int>(i);

@@ -77,7 +77,8 @@ double cube_force(const Mat3& rot, double depth, ContactLaw law) {
   WorldDef def;
   TetMesh c = vs::cube(a, rot, Vec3::Zero());
   c.nodes.row(2).array() -= vs::lowest(c) + depth;
-  def.bodies.push_back({.name = "cube", .kind = BodyKind::rigid, .mesh = c, .material = vs::stone()});
+  def.bodies.push_back(
+      {.name = "cube", .kind = BodyKind::rigid, .mesh = c, .material = vs::stone()});
   def.bodies.push_back(vs::block(a, vs::stone()));
   def.contact.law = law;
   def.contact.kv = 1e9;

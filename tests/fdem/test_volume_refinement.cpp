@@ -91,9 +91,11 @@ void check_sequence(bool two_spheres) {
   Errors last;
   for (const int n : {8, 16, 32}) {
     double e = 0, drift = 0;
-    const Errors err = two_spheres ? run_two_spheres(n, ref, e, drift) : run_on_plane(n, ref, e, drift);
-    std::printf("n = %d: peak %+.4f, duration %+.4f against the smooth sphere; e = %.6f, drift %.2e\n",
-                n, err.force, err.duration, e, drift);
+    const Errors err =
+        two_spheres ? run_two_spheres(n, ref, e, drift) : run_on_plane(n, ref, e, drift);
+    std::printf(
+        "n = %d: peak %+.4f, duration %+.4f against the smooth sphere; e = %.6f, drift %.2e\n", n,
+        err.force, err.duration, e, drift);
     EXPECT_NEAR(e, 1.0, 1e-3) << "n = " << n;
     EXPECT_LT(drift, 1e-3) << "n = " << n;
     // Convergence: each refinement at least halves the larger of the two errors' bound (the
