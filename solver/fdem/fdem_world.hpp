@@ -100,6 +100,17 @@ struct TetPair {
   Vec3 spring = Vec3::Zero();
 };
 
+// Volume laws: the overlap integrals of one pair of bodies, gathered over their candidate
+// tetrahedron pairs during a step (contact/overlap_volume.hpp).
+struct BodyOverlap {
+  int a = -1, b = -1;  // bodies, a < b
+  Vec3 origin = Vec3::Zero();
+  contact::OverlapSide side_a, side_b;  // ∂A ∩ B and ∂B ∩ A
+  double energy = 0;                    // J: W(V), or volume-linear's work done so far
+  double volume = 0;                    // V at the last step, m³
+  double slope = 0;                     // s = |F| / |S| at the last step, Pa
+};
+
 #include "contact/overlap_volume.hpp"
 struct World {
   // Nodes, structure of arrays. Fixed nodes have mass 0 and inverse mass 0.

@@ -211,15 +211,6 @@ struct FdemModel {
   long check_every() const { return std::min(20L, every); }
 };
 
-std::vector<TetMesh> collision_meshes(const scene::SceneDef& s) {
-  Built built = build(s);
-  std::vector<TetMesh> out(s.bodies.size());
-  for (std::size_t i = 0; i < built.scene_body.size(); ++i) {
-    out[static_cast<std::size_t>(built.scene_body[i])] = std::move(built.def.bodies[i].mesh);
-  }
-  return out;
-}
-
 // The world, checked: no body may start inside another (the first step would fire it out with
 // a spurious force), and something must move.
 fdem::World checked_world(const scene::SceneDef& s, const Built& built) {
@@ -263,6 +254,15 @@ StepRegime regime_of(const fdem::World& w) {
 }
 
 }  // namespace
+
+std::vector<TetMesh> collision_meshes(const scene::SceneDef& s) {
+  Built built = build(s);
+  std::vector<TetMesh> out(s.bodies.size());
+  for (std::size_t i = 0; i < built.scene_body.size(); ++i) {
+    out[static_cast<std::size_t>(built.scene_body[i])] = std::move(built.def.bodies[i].mesh);
+  }
+  return out;
+}
 
 bool is_fdem_scene(const scene::SceneDef& s) {
   if (s.contact.law == scene::ContactLaw::potential ||
