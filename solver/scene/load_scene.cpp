@@ -71,6 +71,11 @@ ContactDef parse_contact(const JsonReader& c) {
   if (const std::optional<ContactLaw> known = contact_law_from_name(law)) {
     out.law = *known;
     if (out.law == ContactLaw::linear) out.kn = c.positive("kn");
+    if (out.law == ContactLaw::volume_linear) {
+      if (!c.has("kv"))
+        c.fail("kv", "volume-linear needs kv, the volumetric stiffness in N/m³ (F_n = kv · V)");
+      out.kv = c.positive("kv");
+    }
   } else {
     const std::string near = io::closest_key(law, names);
     std::string expected;
@@ -81,6 +86,7 @@ ContactDef parse_contact(const JsonReader& c) {
                       (near.empty() ? "" : " (did you mean \"" + near + "\"?)") + "; expected " +
                       expected);
   }
+  if (c.has("kv") && !out.kv) c.fail("kv", "only the volume-linear law takes kv");
   if (c.has("kn") && !out.kn) c.fail("kn", "only the linear law takes kn");
   if (c.has("kt")) {
     if (out.law != ContactLaw::linear) c.fail("kt", "only the linear law takes kt");

@@ -49,14 +49,16 @@ struct BodyDef {
   double damping_ratio = 0;
 };
 
-enum class ContactLaw { hertz, hertz_mindlin, linear, potential };
+enum class ContactLaw { hertz, hertz_mindlin, linear, potential, volume_hertz, volume_linear };
 
 // The scene's name of each law: the one table the loader parses with and summaries write.
-inline constexpr std::array<std::pair<ContactLaw, std::string_view>, 4> kContactLawNames{{
+inline constexpr std::array<std::pair<ContactLaw, std::string_view>, 6> kContactLawNames{{
     {ContactLaw::hertz, "hertz"},
     {ContactLaw::hertz_mindlin, "hertz-mindlin"},
     {ContactLaw::linear, "linear"},
     {ContactLaw::potential, "potential"},
+    {ContactLaw::volume_hertz, "volume-hertz"},
+    {ContactLaw::volume_linear, "volume-linear"},
 }};
 inline std::string contact_law_name(ContactLaw law) {
   for (const auto& [l, name] : kContactLawNames) {
@@ -78,6 +80,7 @@ struct ContactDef {
   std::optional<double> penalty;        // potential: penalty p, Pa (default α·E)
   std::optional<double> penalty_alpha;  // potential: α in p = α·E (E the largest moving body's
                                         // Young's modulus; default 10); exclusive with penalty
+  std::optional<double> kv;             // volume-linear: volumetric stiffness, N/m³
   std::optional<double> friction;       // overrides the materials' pair friction
   std::optional<double> restitution;    // overrides the materials' pair restitution
 };
