@@ -111,7 +111,8 @@ TetMesh mesh_body(const scene::MeshShape& m, const std::string& key) {
   o.faces = m.faces;
   o.read.scale = m.scale;
   o.tetrahedralize = true;
-  (void)key;
+  o.tet.element_size.size = m.element_size;
+  o.element_size_key = key + "shape.element_size";
   return geometry::prepare_particle(m.file, o).tets;
 #else
   (void)m;

@@ -1,0 +1,69 @@
+// Hertz by element size (issue 11): a deformable sphere whose geometry stays fixed (a faceted
+// sphere fine at its strike point, tests/fdem/hertz_spheres.hpp) is meshed at decreasing element
+// sizes graded towards the contact, and strikes a fixed block; the peak force and contact
+// duration are compared with Hertz's impact, and the error must fall with every refinement at a
+// measured rate. The table it prints is reports/fem/hertz_convergence.md.
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <cstdio>
+#include <ctime>
+#include <vector>
+
+#include "geometry/tet_quality.hpp"
+#include "hertz_spheres.hpp"
+
+namespace asperity::fdem {
+namespace {
+
+double cpu_seconds(std::clock_t t0) {
+  return static_cast<double>(std::clock() - t0) / CLOCKS_PER_SEC;
+}
+
+struct Level {
+  double h = 0;  // m, element size at the strike point
+  long tets = 0;
+  double smallest_edge = 0, err_force = 0, err_duration = 0, cpu = 0;
+};
+
+Level run_level(double h, double alpha) {
+  const Material m = scenes::rubbery();
+  std::clock_t t0 = std::clock();
+  const TetMesh ball = hertz::sphere_mesh(h, true);
+  const double mesh_cpu = cpu_seconds(t0);
+  const scenes::Hertz ref = hertz::sphere_on_block_hertz(ball, m);
+  t0 = std::clock();
+  World w = make_world(hertz::sphere_on_block(ball, m, alpha));
+  w.want_energy = false;
+  const scenes::Impact im = scenes::run_impact(w, 0.1);
+  EXPECT_TRUE(w.failure.empty()) << w.failure;
+  Level l{.h = h,
+          .tets = ball.tets.cols(),
+          .smallest_edge = geometry::tet_quality(ball).smallest_edge,
+          .err_force = im.peak_force / ref.force - 1,
+          .err_duration = im.duration / ref.duration - 1,
+          .cpu = cpu_seconds(t0)};
+  std::printf(
+      "h %.4f m  tets %6ld  shortest edge %.2e m  mesh %.1f s  run %.1f s CPU  peak %+.4f"
+      "  duration %+.4f  (%ld steps, dt %.3g s)\n",
+      h, l.tets, l.smallest_edge, mesh_cpu, l.cpu, l.err_force, l.err_duration, im.steps, im.dt);
+  return l;
+}
+
+// Label `slow`: three levels, about 90 s of CPU on the development machine when idle (budget
+// 3 min). The error must fall with every halving-by-√2 of the element size, and the observed
+// order p = log(e₁/e₂)/log(h₁/h₂) over the finest pair is asserted.
+TEST(HertzConvergence, SphereOnBlockPeakForceFallsWithElementSize) {
+  std::vector<Level> levels;
+  for (const double h : {0.008, 0.0057, 0.004}) levels.push_back(run_level(h, 10));
+  for (std::size_t i = 1; i < levels.size(); ++i) {
+    EXPECT_LT(std::abs(levels[i].err_force), std::abs(levels[i - 1].err_force)) << "level " << i;
+  }
+  const Level &a = levels[levels.size() - 2], &b = levels.back();
+  const double order = std::log(std::abs(a.err_force / b.err_force)) / std::log(a.h / b.h);
+  std::printf("observed order of the peak-force error over the finest pair: %.2f\n", order);
+  EXPECT_GT(order, 0.5);
+}
+
+}  // namespace
+}  // namespace asperity::fdem
