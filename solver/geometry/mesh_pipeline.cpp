@@ -54,7 +54,11 @@ PreparedParticle finish(PreparedParticle p, const PipelineOptions& options) {
     }
     t0 = std::chrono::steady_clock::now();
     p.element_size = options.tet.element_size;
-    p.tets = tetrahedralize(p.surface, options.tet);
+    try {
+      p.tets = tetrahedralize(p.surface, options.tet);
+    } catch (const InputError& e) {  // a budget passed: name the input it was passed on
+      throw InputError(p.source_name + ": " + e.what());
+    }
     p.seconds_tetrahedralize = seconds_since(t0);
     p.quality = tet_quality(p.tets);
   }

@@ -204,19 +204,19 @@ TetMesh tetrahedralize(const SurfaceMesh& input, const TetOptions& options_in) {
   // std::runtime_error.
   const TetgenJob first = job_for(surface, {}, options);
   IsolatedResult r = run_tetgen_isolated(first, options.time_budget_s);
+  std::ostringstream bound;
+  bound << "radius-edge bound (quality) " << options.radius_edge_ratio;
   if (r.timed_out) {
-    throw InputError("tetrahedralization did not finish within " +
-                     std::to_string(static_cast<long>(options.time_budget_s)) +
-                     " s (radius-edge bound " + std::to_string(options.radius_edge_ratio) + ", " +
-                     std::to_string(surface.faces.cols()) +
-                     " surface triangles); ask for a looser quality bound (>= 1.2) or a larger "
-                     "element size");
+    throw InputError("tetrahedralization did not finish within its time budget of " +
+                     std::to_string(static_cast<long>(options.time_budget_s)) + " s (" +
+                     bound.str() + ", " + std::to_string(surface.faces.cols()) +
+                     " surface triangles); ask for a looser bound (>= 1.2) or a larger element "
+                     "size");
   }
   if (!r.mesh) throw std::runtime_error(r.failure);
   TetMesh tm = std::move(*r.mesh);
   if (options.max_steiner_points >= 0 && steiner_points(first, tm) >= options.max_steiner_points) {
-    throw InputError("the radius-edge bound " + std::to_string(options.radius_edge_ratio) +
-                     " needs more than the budget of " +
+    throw InputError("the " + bound.str() + " needs more than the budget of " +
                      std::to_string(options.max_steiner_points) +
                      " interior points on this surface; ask for a looser bound (>= 1.2)");
   }

@@ -64,7 +64,7 @@ TEST(ElementSize, SubdivisionKeepsAreaVolumeAndCentroid) {
   const MassProperties before = mass_properties(s);
   const double extent =
       (s.vertices.rowwise().maxCoeff() - s.vertices.rowwise().minCoeff()).maxCoeff();
-  for (const double h : {extent / 10, extent / 40}) {
+  for (const double h : {extent / 30, extent / 60}) {
     const SurfaceMesh t = subdivide_surface(s, {.size = h});
     const MassProperties after = mass_properties(t);
     EXPECT_GT(t.faces.cols(), s.faces.cols());
@@ -104,8 +104,8 @@ TEST(ElementSize, GradedSubdivisionMeetsTheLocalSize) {
 // The quality mesh of an element size: the surface is the bisected one (the solid unchanged),
 // its edges are within a small factor of the size, and the radius-edge bound holds.
 TEST(ElementSize, TetrahedralizationMeetsTheSizeAndTheBound) {
-  const SurfaceMesh s = geodesic_sphere(4);  // unit sphere, edge ≈ 0.28
-  const double h = 0.1;
+  const SurfaceMesh s = geodesic_sphere(3);  // unit sphere, edge ≈ 0.37
+  const double h = 0.2;
   TetOptions o;
   o.radius_edge_ratio = 1.5;
   o.element_size = {.size = h};
