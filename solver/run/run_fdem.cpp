@@ -438,6 +438,10 @@ RunResult run_fdem(const scene::SceneDef& s, const RunOptions& options) {
   j["contact_law"] = "potential";
   j["recorded_body"] = s.bodies[s.record.body].name;
   j["peak_force"] = im.peak_force;
+  // The raw peak above, beside the first contact's peak low-passed over a twentieth of its
+  // duration and that contact's raw / filtered − 1 (docs/physics.md, issue 11).
+  j["peak_force_filtered"] = im.filtered_peak();
+  j["ringing_amplitude"] = im.ringing_amplitude();
   j["impulse"] = im.impulse;
   j["contact_duration"] = im.duration_until(w.time);
   j["first_contact_time"] = im.first_contact_time < 0 ? J() : J(im.first_contact_time);
