@@ -1,11 +1,11 @@
 // `asperity crosscheck SCENE.json --out DIR`: the scene in asperity and in YADE, side by side.
 //
 // asperity runs as `run` does (DIR/asperity/). The scene, as asperity resolved it (dt, step count,
-// the damping of each material pair), goes to DIR/yade/input.json; validation/peers/scene_to_yade.py
-// builds it in YADE (`yade -n -x`), times a plain run and records YADE's force on the recorded body
-// every step. Both force histories are measured by the same code (run/impact_measures.hpp,
-// run/rebound.hpp), so a difference is the codes', not the measuring's. docs/crosscheck.md has the
-// law mapping and every systematic difference.
+// the damping of each material pair), goes to DIR/yade/input.json;
+// validation/peers/scene_to_yade.py builds it in YADE (`yade -n -x`), times a plain run and records
+// YADE's force on the recorded body every step. Both force histories are measured by the same code
+// (run/impact_measures.hpp, run/rebound.hpp), so a difference is the codes', not the measuring's.
+// docs/crosscheck.md has the law mapping and every systematic difference.
 #include <sys/wait.h>
 #include <unistd.h>
 
@@ -80,8 +80,8 @@ Json yade_input(const scene::SceneDef& s, double dt, long steps) {
                                         : contact::NormalLaw::hertz;
   if (s.contact.law == scene::ContactLaw::linear) {
     j["kn"] = *s.contact.kn;
-    j["kt"] =
-        s.contact.kt.value_or(2.0 / 7.0 * *s.contact.kn);  // asperity's default (run_scene.cpp)
+    j["kt"] = s.contact.kt.value_or(2.0 / 7.0 *
+                                    *s.contact.kn);  // asperity's default (run/run_spheres.cpp)
   }
   // The hertz law has no tangential force: friction 0 caps YADE's shear force at zero.
   if (s.contact.law == scene::ContactLaw::hertz)

@@ -95,7 +95,6 @@ inline WorldDef sphere_on_block(const TetMesh& ball, const Material& m, double a
                         .mesh = box_mesh(Vec3(-2 * kRadius, -2 * kRadius, -kRadius),
                                          Vec3(2 * kRadius, 2 * kRadius, 0), 1, 1, 1),
                         .material = m});
-  def.record_body = 0;
   def.contact.alpha = alpha;
   return def;
 }

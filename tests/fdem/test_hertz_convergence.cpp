@@ -34,7 +34,6 @@ Level run_level(double h, double alpha) {
   const scenes::Hertz ref = hertz::sphere_on_block_hertz(ball, m);
   t0 = std::clock();
   World w = make_world(hertz::sphere_on_block(ball, m, alpha));
-  w.want_energy = false;
   const scenes::Impact im = scenes::run_impact(w, 0.1);
   EXPECT_TRUE(w.failure.empty()) << w.failure;
   Level l{.h = h,
