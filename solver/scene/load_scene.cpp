@@ -54,6 +54,9 @@ Shape parse_shape(const JsonReader& s) {
     if (m.file.is_relative()) m.file = s.file().parent_path() / m.file;
     m.faces = s.has("faces") ? static_cast<int>(s.integer("faces", 4, 10'000'000)) : 0;
     m.scale = s.has("scale") ? s.positive("scale") : 1.0;
+    // Positive here; against the particle's size and the tetrahedra it would make, where the
+    // mesh is read (geometry::element_size_problem).
+    m.element_size = s.has("element_size") ? s.positive("element_size") : 0.0;
     return m;
   }
   const std::string near = io::closest_key(type, {"sphere", "plane", "box", "mesh"});

@@ -30,6 +30,10 @@ struct MeshShape {
   std::filesystem::path file;  // resolved against the scene file's folder
   int faces = 0;               // 0: keep the file's triangles
   double scale = 1;            // multiplies the file's coordinates (e.g. 1e-3 for mm)
+  // m, after scale; 0: the surface triangles are the elements' faces. Otherwise the target
+  // tetrahedron edge length, the surface bisected in its own planes to meet it (the geometry
+  // unchanged) and the interior filled with quality tetrahedra (docs/geometry.md).
+  double element_size = 0;
 };
 using Shape = std::variant<SphereShape, PlaneShape, BoxShape, MeshShape>;
 

@@ -209,3 +209,21 @@ TEST(LoadScene, VolumeLawKeysAreChecked) {
                 .find("did you mean \"volume-hertz\""),
             std::string::npos);
 }
+
+// A mesh body's element_size (issue 11): not positive is refused where the scene is read; one
+// that would make more than ~20 M tetrahedra where the mesh is, naming the scene, the key, the
+// value and the estimate.
+TEST(LoadScene, ElementSizeIsCheckedAgainstTheParticle) {
+  const std::string mesh = std::string(ASPERITY_SOURCE_DIR) + "/data/meshes/particle-seed3-320.off";
+  const auto scene_with = [&](const std::string& size) {
+    return R"({"duration": 0.001, "materials": {"rock": {"density": 2650, "young": 5e10,
+      "poisson": 0.25}}, "bodies": [{"name": "rock", "material": "rock", "model": "fem",
+      "shape": {"type": "mesh", "file": ")" +
+           mesh + R"(", "element_size": )" + size + R"(}}], "contact": {"law": "potential"}})";
+  };
+  std::string msg = error_of("element_size_negative", scene_with("-0.001"));
+  EXPECT_NE(msg.find("bodies[0].shape.element_size: must be > 0"), std::string::npos) << msg;
+  msg = error_of("element_size_tiny", scene_with("1e-6"));
+  EXPECT_NE(msg.find("shape.element_size: 1e-06 m would make about"), std::string::npos) << msg;
+  EXPECT_NE(msg.find("M tetrahedra"), std::string::npos) << msg;
+}
