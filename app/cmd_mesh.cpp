@@ -5,7 +5,9 @@
 #include <iostream>
 #include <memory>
 
+#include "app/cli_numbers.hpp"
 #include "app/commands.hpp"
+#include "app/out_folder.hpp"
 #include "core/error.hpp"
 #include "geometry/mesh_pipeline.hpp"
 
@@ -29,6 +31,7 @@ int cmd_mesh(const MeshArgs& a) {
   options.tetrahedralize = !a.no_tets;
   options.tet.radius_edge_ratio = a.quality;
   options.tet.min_dihedral_deg = a.min_dihedral;
+  check_out_folder(a.out);
   const geometry::PreparedParticle p = geometry::prepare_particle(a.input, options);
   geometry::write_prepared_particle(p, a.out);
   if (!a.quiet) {
@@ -59,17 +62,17 @@ void add_mesh_command(CLI::App& app, Action& action) {
   cmd->add_option("--faces", args->faces,
                   "Exact triangle count of the result: even, at least 4, at most the input's "
                   "(default: keep)")
-      ->check(CLI::NonNegativeNumber);
+      ->check(whole_number(0, 10'000'000));
   cmd->add_option("--out", args->out, "Output folder")->required();
   cmd->add_option("--scale", args->scale,
                   "Factor to metres for every coordinate (1e-3 for millimetres)")
-      ->check(CLI::PositiveNumber);
+      ->check(real_number(0, 1e6, true));
   cmd->add_option("--quality", args->quality,
                   "TetGen radius-edge bound with interior points only (0: no refinement)")
-      ->check(CLI::NonNegativeNumber);
+      ->check(real_number(0, 1e6, false));
   cmd->add_option("--min-dihedral", args->min_dihedral,
                   "TetGen smallest dihedral angle asked for, degrees")
-      ->check(CLI::Range(0.0, 70.0));
+      ->check(real_number(0, 70, false));
   cmd->add_flag("--no-tets", args->no_tets, "Surface only: no tetrahedralization");
   cmd->add_flag("-q,--quiet", args->quiet, "No summary line on stderr");
   cmd->callback([args, &action] { action = [args] { return cmd_mesh(*args); }; });

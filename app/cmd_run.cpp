@@ -4,6 +4,7 @@
 #include <memory>
 
 #include "app/commands.hpp"
+#include "app/out_folder.hpp"
 #include "core/error.hpp"
 #include "run/run_scene.hpp"
 #include "scene/scene.hpp"
@@ -14,6 +15,13 @@ namespace fs = std::filesystem;
 
 int cmd_run(const fs::path& scene_file, const fs::path& out, bool allow_unsafe_dt, bool quiet) {
   const scene::SceneDef s = scene::load_scene(scene_file);
+  check_out_folder(out);
+  // An earlier run's outputs in the same folder would pass for this run's if it is interrupted
+  // or fails: they go before it starts (summary.json, written last, marks a complete run).
+  for (const char* f : {"summary.json", "force.csv", "energy.csv"}) {
+    std::error_code ec;
+    fs::remove(out / f, ec);
+  }
   const run::RunResult r = run::run_scene(s, {.dt = std::nullopt,
                                               .allow_unsafe_dt = allow_unsafe_dt,
                                               .keep_rows = true,

@@ -4,7 +4,9 @@
 #include <filesystem>
 #include <memory>
 
+#include "app/cli_numbers.hpp"
 #include "app/commands.hpp"
+#include "app/out_folder.hpp"
 #include "core/error.hpp"
 #include "study/study_def.hpp"
 #include "study/study_run.hpp"
@@ -30,7 +32,8 @@ void add_study_command(CLI::App& app, Action& action) {
       ->required();
   cmd->add_option("--out", args->out, "Output folder")->required();
   cmd->add_option("-j,--jobs", args->jobs,
-                  "Worker threads (default: the study's \"jobs\", else every core)");
+                  "Worker threads (default: the study's \"jobs\", else every core)")
+      ->check(whole_number(0, 4096));
   cmd->add_flag("-q,--quiet", args->quiet, "Only errors on stderr");
   cmd->add_flag(
       "--allow-failed", args->allow_failed,
@@ -40,6 +43,7 @@ void add_study_command(CLI::App& app, Action& action) {
       if (args->jobs < 0)
         throw InputError("--jobs: must be >= 0 (got " + std::to_string(args->jobs) + ")");
       const study::StudyDef def = study::load_study(args->study);
+      check_out_folder(args->out);
       const study::StudyOutcome o =
           study::run_study(def, args->out, {.jobs = args->jobs, .quiet = args->quiet});
       const study::StudyTables tables = study::write_tables(def, args->out, o);

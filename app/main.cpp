@@ -7,6 +7,33 @@
 
 #include "app/commands.hpp"
 #include "core/error.hpp"
+#include "core/interrupt.hpp"
+
+namespace {
+
+// The contract's "one line on stderr": a message quotes input (keys, file names, values), and
+// input may hold newlines, control bytes or megabytes; those are escaped and cut here, once.
+std::string one_line(const std::string& message) {
+  constexpr std::size_t kMax = 600;
+  std::string out;
+  for (const char c : message) {
+    if (out.size() >= kMax) {
+      out += "...";
+      break;
+    }
+    if (static_cast<unsigned char>(c) < 0x20 || c == 0x7f) {
+      static const char* hex = "0123456789abcdef";
+      out += "\\x";
+      out += hex[(static_cast<unsigned char>(c) >> 4) & 0xf];
+      out += hex[static_cast<unsigned char>(c) & 0xf];
+    } else {
+      out += c;
+    }
+  }
+  return out;
+}
+
+}  // namespace
 
 int main(int argc, char** argv) {
   using namespace asperity;
@@ -39,16 +66,17 @@ int main(int argc, char** argv) {
   } catch (const CLI::ParseError& e) {
     std::string what = e.what();
     std::replace(what.begin(), what.end(), '\n', ' ');
-    std::cerr << "asperity: " << what << " (see asperity --help)\n";
+    std::cerr << "asperity: " << one_line(what) << " (see asperity --help)\n";
     return kExitBadInput;
   }
+  install_interrupt_cleanup();
   try {
     return action ? action() : kExitBadInput;
   } catch (const InputError& e) {
-    std::cerr << "asperity: " << e.what() << "\n";
+    std::cerr << "asperity: " << one_line(e.what()) << "\n";
     return kExitBadInput;
   } catch (const std::exception& e) {
-    std::cerr << "asperity: error: " << e.what() << "\n";
+    std::cerr << "asperity: error: " << one_line(e.what()) << "\n";
     return kExitFailure;
   }
 }

@@ -100,6 +100,11 @@ ContactDef parse_contact(const JsonReader& c) {
 SceneDef parse_scene(const io::Json& json, const std::filesystem::path& file,
                      const std::string& prefix) {
   const JsonReader r(json, file, prefix);
+  // A validation case holds a scene; "unknown key case" would hide what the user has in hand.
+  if (prefix.empty() && r.has("case") && r.has("scene")) {
+    r.fail("", "this is a validation case (it has \"case\" and \"scene\"), not a scene; run it "
+               "with asperity validate");
+  }
   r.only_keys({"name", "gravity", "duration", "dt", "dt_safety", "allow_unsafe_dt",
                "unstable_energy_growth", "materials", "bodies", "contact", "record"});
   SceneDef s;
@@ -111,7 +116,7 @@ SceneDef parse_scene(const io::Json& json, const std::filesystem::path& file,
     const auto& dt = r.value().at("dt");
     if (dt.is_string()) {
       if (dt.get<std::string>() != "auto")
-        r.fail("dt", "must be a number or \"auto\" (got " + dt.dump() + ")");
+        r.fail("dt", "must be a number or \"auto\" (got " + io::echo(dt) + ")");
     } else {
       s.dt = r.positive("dt");
     }
@@ -180,6 +185,18 @@ SceneDef parse_scene(const io::Json& json, const std::filesystem::path& file,
   }
 
   if (r.has("contact")) s.contact = parse_contact(r.child("contact"));
+  // The potential law acts between tetrahedral meshes; a sphere has none (say so here, where the
+  // key is known, rather than as a shape problem in the runner).
+  if (s.contact.law == ContactLaw::potential) {
+    for (std::size_t i = 0; i < s.bodies.size(); ++i) {
+      if (std::holds_alternative<SphereShape>(s.bodies[i].shape)) {
+        r.child("contact").fail(
+            "law", "\"potential\" acts between meshed bodies, and bodies[" + std::to_string(i) +
+                       "] is a sphere; use hertz, hertz-mindlin or linear, or mesh the sphere "
+                       "(shape \"mesh\")");
+      }
+    }
+  }
 
   if (r.has("record")) {
     const JsonReader rec = r.child("record");

@@ -3,6 +3,7 @@
 
 #include <fcntl.h>
 #include <sys/file.h>
+#include <sys/stat.h>
 #include <unistd.h>
 
 #include <algorithm>
@@ -20,6 +21,7 @@
 #include <thread>
 
 #include "core/error.hpp"
+#include "core/interrupt.hpp"
 #include "fdem/fdem_world.hpp"
 #include "fdem/structured_mesh.hpp"
 #include "fdem/time_step.hpp"
@@ -369,14 +371,34 @@ StudyOutcome run_study(const StudyDef& def, const fs::path& out, const StudyRunO
   std::mutex mutex;
   fs::create_directories(out);
   // One study at a time per folder: a second one would write the same cases.
-  const int lock_fd = ::open((out / "study.lock").c_str(), O_CREAT | O_RDWR, 0644);
-  if (lock_fd < 0 || ::flock(lock_fd, LOCK_EX | LOCK_NB) != 0) {
-    throw InputError(out.string() + ": another asperity study is running in this folder");
+  const fs::path lock_file = out / "study.lock";
+  int lock_fd = -1;
+  for (int attempt = 0; lock_fd < 0 && attempt < 3; ++attempt) {
+    lock_fd = ::open(lock_file.c_str(), O_CREAT | O_RDWR, 0644);
+    if (lock_fd < 0 || ::flock(lock_fd, LOCK_EX | LOCK_NB) != 0) {
+      if (lock_fd >= 0) ::close(lock_fd);
+      throw InputError(out.string() + ": another asperity study is running in this folder");
+    }
+    // A study that just finished removed the file we locked: take a fresh one.
+    struct stat held {}, named {};
+    if (::fstat(lock_fd, &held) != 0 || ::stat(lock_file.c_str(), &named) != 0 ||
+        held.st_ino != named.st_ino) {
+      ::close(lock_fd);
+      lock_fd = -1;
+    }
   }
+  if (lock_fd < 0) throw std::runtime_error(lock_file.string() + ": cannot take the lock");
+  // The lock goes with the study, however it ends (an exception, SIGINT/SIGTERM): removed while
+  // still held, so no second study takes the old file in between.
   struct Unlock {
     int fd;
-    ~Unlock() { ::close(fd); }
-  } unlock{lock_fd};
+    fs::path file;
+    ~Unlock() {
+      ::unlink(file.c_str());
+      ::close(fd);
+    }
+  } unlock{lock_fd, lock_file};
+  const RemoveOnInterrupt unlock_on_interrupt(lock_file);
 
   // 1. Sources (cheap, serial): each particle's surface, written for the record.
   const std::size_t np = def.particles.size();
