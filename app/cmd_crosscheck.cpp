@@ -1,11 +1,11 @@
 // `asperity crosscheck SCENE.json --out DIR`: the scene in asperity and in YADE, side by side.
 //
 // asperity runs as `run` does (DIR/asperity/). The scene, as asperity resolved it (dt, step count,
-// the damping of each material pair), goes to DIR/yade/input.json; validation/peers/scene_to_yade.py
-// builds it in YADE (`yade -n -x`), times a plain run and records YADE's force on the recorded body
-// every step. Both force histories are measured by the same code (run/impact_measures.hpp,
-// run/rebound.hpp), so a difference is the codes', not the measuring's. docs/crosscheck.md has the
-// law mapping and every systematic difference.
+// the damping of each material pair), goes to DIR/yade/input.json;
+// validation/peers/scene_to_yade.py builds it in YADE (`yade -n -x`), times a plain run and records
+// YADE's force on the recorded body every step. Both force histories are measured by the same code
+// (run/impact_measures.hpp, run/rebound.hpp), so a difference is the codes', not the measuring's.
+// docs/crosscheck.md has the law mapping and every systematic difference.
 #include <sys/wait.h>
 #include <unistd.h>
 

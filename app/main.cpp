@@ -55,6 +55,18 @@ int main(int argc, char** argv) {
   app::add_report_command(cli, action);
   app::add_recommend_command(cli, action);
 
+  // CLI11 reads an unknown first word as a stray positional ("A subcommand is required").
+  if (argc > 1 && argv[1][0] != '-') {
+    const auto known = cli.get_subcommands([](CLI::App*) { return true; });
+    if (std::none_of(known.begin(), known.end(),
+                     [&](const CLI::App* c) { return c->get_name() == argv[1]; })) {
+      std::string names;
+      for (const CLI::App* c : known) names += (names.empty() ? "" : ", ") + c->get_name();
+      std::cerr << "asperity: unknown command \"" << one_line(argv[1]) << "\" (commands: " << names
+                << "; see asperity --help)\n";
+      return kExitBadInput;
+    }
+  }
   try {
     cli.parse(argc, argv);
   } catch (const CLI::CallForHelp& e) {

@@ -62,6 +62,23 @@ std::string sniff_format(const std::string& head) {
   return "";
 }
 
+// Binary STL vertices (not normals, which readers ignore) must be finite: a NaN breaks the
+// reader's point merging and surfaces later as a misleading "open mesh".
+void check_binary_stl_finite(const fs::path& file, std::uint32_t count) {
+  std::ifstream in(file, std::ios::binary);
+  in.seekg(84);
+  std::array<char, 50> rec{};
+  std::size_t bad = 0;
+  for (std::uint32_t t = 0; t < count && in.read(rec.data(), rec.size()); ++t) {
+    for (int k = 3; k < 12; ++k) {  // floats 0-2 are the normal
+      float x = 0;
+      std::memcpy(&x, rec.data() + 4 * k, 4);
+      if (!std::isfinite(x)) ++bad;
+    }
+  }
+  if (bad > 0) fail(file, std::to_string(bad) + " NaN or infinite vertex coordinates");
+}
+
 // Binary STL: 80-byte header, uint32 triangle count, 50 bytes per triangle. A file that does not
 // start with "solid", or whose size matches that layout, is binary; its size must hold every
 // declared triangle (CGAL would otherwise fail without saying why).
@@ -88,30 +105,13 @@ void check_binary_stl_size(const fs::path& file, std::uintmax_t size) {
   }
 }
 
-// Binary STL vertices (not normals, which readers ignore) must be finite: a NaN breaks the
-// reader's point merging and surfaces later as a misleading "open mesh".
-void check_binary_stl_finite(const fs::path& file, std::uint32_t count) {
-  std::ifstream in(file, std::ios::binary);
-  in.seekg(84);
-  std::array<char, 50> rec{};
-  std::size_t bad = 0;
-  for (std::uint32_t t = 0; t < count && in.read(rec.data(), rec.size()); ++t) {
-    for (int k = 3; k < 12; ++k) {  // floats 0-2 are the normal
-      float x = 0;
-      std::memcpy(&x, rec.data() + 4 * k, 4);
-      if (!std::isfinite(x)) ++bad;
-    }
-  }
-  if (bad > 0) fail(file, std::to_string(bad) + " NaN or infinite vertex coordinates");
-}
-
 // Header counts checked against the file's size before any reader allocates for them: an OFF or
 // PLY header is a promise the reader trusts (CGAL reserves what it declares: 2e9 vertices is a
 // std::bad_alloc, 1e8 in a 15 KB file costs 2.3 GB before the file is refused). Every ASCII
 // number takes at least two bytes (a digit and a separator).
 void check_declared_counts(const fs::path& file, const std::string& format, std::uintmax_t size,
-                           std::uintmax_t vertices, std::uintmax_t faces, std::uintmax_t vertex_bytes,
-                           std::uintmax_t face_bytes) {
+                           std::uintmax_t vertices, std::uintmax_t faces,
+                           std::uintmax_t vertex_bytes, std::uintmax_t face_bytes) {
   // Both counts are below 2^40 here (parsed with a cap), so the products do not overflow.
   const std::uintmax_t need = vertices * vertex_bytes + faces * face_bytes;
   if (need > size) {
@@ -162,10 +162,9 @@ void check_ply_header(const fs::path& file, std::uintmax_t size) {
   std::uintmax_t nv = 0, nf = 0, vertex_bytes = 0;
   std::string element;
   static const std::map<std::string, std::uintmax_t> kBytes = {
-      {"char", 1},   {"uchar", 1},  {"int8", 1},   {"uint8", 1},   {"short", 2},
-      {"ushort", 2}, {"int16", 2},  {"uint16", 2}, {"int", 4},     {"uint", 4},
-      {"int32", 4},  {"uint32", 4}, {"float", 4},  {"float32", 4}, {"double", 8},
-      {"float64", 8}};
+      {"char", 1},  {"uchar", 1},   {"int8", 1},   {"uint8", 1},  {"short", 2}, {"ushort", 2},
+      {"int16", 2}, {"uint16", 2},  {"int", 4},    {"uint", 4},   {"int32", 4}, {"uint32", 4},
+      {"float", 4}, {"float32", 4}, {"double", 8}, {"float64", 8}};
   for (int n = 0; n < 200 && std::getline(in, line); ++n) {
     std::istringstream l(line);
     std::string kw;
@@ -181,8 +180,8 @@ void check_ply_header(const fs::path& file, std::uintmax_t size) {
       const auto c = header_count(count);
       if (!c) {
         fail(file, "PLY header: element \"" + element.substr(0, 20) +
-                       "\" count must be a whole number below 2^40 (got \"" +
-                       count.substr(0, 20) + "\")");
+                       "\" count must be a whole number below 2^40 (got \"" + count.substr(0, 20) +
+                       "\")");
       }
       if (element == "vertex") nv = *c;
       if (element == "face") nf = *c;

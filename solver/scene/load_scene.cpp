@@ -102,8 +102,9 @@ SceneDef parse_scene(const io::Json& json, const std::filesystem::path& file,
   const JsonReader r(json, file, prefix);
   // A validation case holds a scene; "unknown key case" would hide what the user has in hand.
   if (prefix.empty() && r.has("case") && r.has("scene")) {
-    r.fail("", "this is a validation case (it has \"case\" and \"scene\"), not a scene; run it "
-               "with asperity validate");
+    r.fail("",
+           "this is a validation case (it has \"case\" and \"scene\"), not a scene; run it "
+           "with asperity validate");
   }
   r.only_keys({"name", "gravity", "duration", "dt", "dt_safety", "allow_unsafe_dt",
                "unstable_energy_growth", "materials", "bodies", "contact", "record"});

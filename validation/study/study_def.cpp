@@ -142,8 +142,8 @@ StudyDef load_study(const fs::path& file) {
       // exactly N only for even N (docs/geometry.md): an odd N would fail every case of it.
       if (!v.is_number_integer() || v.get<long long>() < 20 || v.get<long long>() > 1'000'000 ||
           v.get<long long>() % 2 != 0) {
-        list.at(i).fail("", "must be an even triangle count from 20 to 1000000 (got " +
-                                io::echo(v) + ")");
+        list.at(i).fail(
+            "", "must be an even triangle count from 20 to 1000000 (got " + io::echo(v) + ")");
       }
       s.resolutions.push_back(v.get<long>());
     }

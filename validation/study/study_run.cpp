@@ -380,7 +380,8 @@ StudyOutcome run_study(const StudyDef& def, const fs::path& out, const StudyRunO
       throw InputError(out.string() + ": another asperity study is running in this folder");
     }
     // A study that just finished removed the file we locked: take a fresh one.
-    struct stat held {}, named {};
+    struct stat held {
+    }, named{};
     if (::fstat(lock_fd, &held) != 0 || ::stat(lock_file.c_str(), &named) != 0 ||
         held.st_ino != named.st_ino) {
       ::close(lock_fd);
