@@ -58,4 +58,19 @@ inline CLI::Validator real_number(double lo, double hi, bool lo_open) {
       desc);
 }
 
+// Any finite real number (the range is checked where the value is used, with its own message).
+inline CLI::Validator finite_number() {
+  return CLI::Validator(
+      [](std::string& text) -> std::string {
+        double x = 0;
+        const char* b = text.data();
+        const char* e = b + text.size();
+        const auto [p, ec] = std::from_chars(b, e, x);
+        if (ec != std::errc{} || p != e || !std::isfinite(x))
+          return "must be a finite number (got \"" + text.substr(0, 40) + "\")";
+        return "";
+      },
+      "FLOAT");
+}
+
 }  // namespace asperity::app

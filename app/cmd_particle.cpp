@@ -79,19 +79,19 @@ void add_particle_command(CLI::App& app, Action& action) {
   cmd->add_option("--out", args->out, "Output file (or folder with --set)")->required();
   cmd->add_option("--set", args->set, "A particle set (JSON, e.g. data/particles/set.json)");
   cmd->add_option("--size", args->def.size, "Equivalent-sphere diameter, m")
-      ->check(real_number(-1e300, 1e300, false))
+      ->check(finite_number())
       ->capture_default_str();
   cmd->add_option("--elongation", args->def.elongation, "b/a of the base ellipsoid, (0, 1]")
-      ->check(real_number(-1e300, 1e300, false))
+      ->check(finite_number())
       ->capture_default_str();
   cmd->add_option("--flatness", args->def.flatness, "c/b of the base ellipsoid, (0, 1]")
-      ->check(real_number(-1e300, 1e300, false))
+      ->check(finite_number())
       ->capture_default_str();
   cmd->add_option("--angularity", args->def.angularity, "Planar cuts: 0 none to 1 many and deep")
-      ->check(real_number(-1e300, 1e300, false))
+      ->check(finite_number())
       ->capture_default_str();
   cmd->add_option("--roughness", args->def.roughness, "Multi-scale surface noise, 0 to 1")
-      ->check(real_number(-1e300, 1e300, false))
+      ->check(finite_number())
       ->capture_default_str();
   cmd->add_option("--faces", args->def.faces, "Triangle count (rounded to 20 n^2)")
       ->check(whole_number(0, 2\'000\'000))->capture_default_str();

@@ -13,6 +13,8 @@ namespace {
 
 using io::JsonReader;
 
+constexpr double kSpeedOfLight = 299'792'458.0;  // m/s
+
 Material parse_material(const JsonReader& m, const std::string& name) {
   m.only_keys({"density", "young", "poisson", "friction", "restitution"});
   Material out;
@@ -166,6 +168,12 @@ SceneDef parse_scene(const io::Json& json, const std::filesystem::path& file,
     }
     body.position = b.vec3_or("position", Vec3::Zero());
     body.velocity = b.vec3_or("velocity", Vec3::Zero());
+    // Newtonian contact mechanics ends well below the speed of light; beyond it the step bounds
+    // (which scale with 1/v) underflow to 0 and the message would be "inf steps of 0 s".
+    if (body.velocity.norm() > kSpeedOfLight) {
+      b.fail("velocity", "speed " + io::echo(body.velocity.norm()) +
+                             " m/s is beyond the speed of light (299792458 m/s)");
+    }
     body.angular_velocity = b.vec3_or("angular_velocity", Vec3::Zero());
     const bool is_wall = std::holds_alternative<PlaneShape>(body.shape) ||
                          std::holds_alternative<BoxShape>(body.shape);

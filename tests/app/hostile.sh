@@ -109,6 +109,8 @@ bad "/dev/zero mesh" "/dev/zero: cannot open file \(missing or not a regular fil
 variant potential "s['contact'] = {'law': 'potential'}"
 bad "potential law on spheres" "potential.json: contact\.law: \"potential\" acts between meshed bodies, and bodies\[[0-9]\] is a sphere" \
   run "$in/potential.json" --out "$out/r"
+variant fast "s['bodies'][0]['velocity'] = [0, 0, -1e308]"
+bad "velocity 1e308" "fast.json: bodies\[0\]\.velocity: speed 1e\+308 m/s is beyond the speed of light" run "$in/fast.json" --out "$out/r"
 bad "run on a validation case" "hertz-glass-sphere-plane-1ms.json: this is a validation case .*asperity validate" \
   run "$case_file" --out "$out/r"
 bad "validate on a scene" "good.json: this is a scene, not a validation case.*asperity run" \
