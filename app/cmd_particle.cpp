@@ -94,7 +94,8 @@ void add_particle_command(CLI::App& app, Action& action) {
       ->check(finite_number())
       ->capture_default_str();
   cmd->add_option("--faces", args->def.faces, "Triangle count (rounded to 20 n^2)")
-      ->check(whole_number(0, 2\'000\'000))->capture_default_str();
+      ->check(whole_number(0, 2'000'000))
+      ->capture_default_str();
   cmd->add_flag("-q,--quiet", args->quiet, "No summary line on stderr");
   cmd->callback([args, cmd, &action] {
     if (!args->set.empty() && cmd->count("--seed") > 0)

@@ -70,13 +70,16 @@ void check_binary_stl_finite(const fs::path& file, std::uint32_t count) {
   std::array<char, 50> rec{};
   std::size_t bad = 0;
   for (std::uint32_t t = 0; t < count && in.read(rec.data(), rec.size()); ++t) {
-    for (int k = 3; k < 12; ++k) {  // floats 0-2 are the normal
-      float x = 0;
-      std::memcpy(&x, rec.data() + 4 * k, 4);
-      if (!std::isfinite(x)) ++bad;
+    for (int v = 1; v < 4; ++v) {  // floats 0-2 are the normal, then three vertices
+      std::array<float, 3> x{};
+      std::memcpy(x.data(), rec.data() + 12 * v, 12);
+      if (!std::all_of(x.begin(), x.end(), [](float c) { return std::isfinite(c); })) ++bad;
     }
   }
-  if (bad > 0) fail(file, std::to_string(bad) + " NaN or infinite vertex coordinates");
+  if (bad > 0) {
+    fail(file, std::to_string(bad) + " vertices with NaN or infinite coordinates (binary STL, " +
+                   "counted per triangle)");
+  }
 }
 
 // Binary STL: 80-byte header, uint32 triangle count, 50 bytes per triangle. A file that does not

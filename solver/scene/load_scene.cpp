@@ -170,9 +170,10 @@ SceneDef parse_scene(const io::Json& json, const std::filesystem::path& file,
     body.velocity = b.vec3_or("velocity", Vec3::Zero());
     // Newtonian contact mechanics ends well below the speed of light; beyond it the step bounds
     // (which scale with 1/v) underflow to 0 and the message would be "inf steps of 0 s".
+    // (The norm of [0, 0, 1e308] overflows to inf, which still compares above.)
     if (body.velocity.norm() > kSpeedOfLight) {
-      b.fail("velocity", "speed " + io::echo(body.velocity.norm()) +
-                             " m/s is beyond the speed of light (299792458 m/s)");
+      b.fail("velocity", "faster than light (got " + io::echo(b.value().at("velocity")) +
+                             " m/s; the speed of light is 299792458 m/s)");
     }
     body.angular_velocity = b.vec3_or("angular_velocity", Vec3::Zero());
     const bool is_wall = std::holds_alternative<PlaneShape>(body.shape) ||
