@@ -60,7 +60,8 @@ json.dump(s, open(sys.argv[2], "w"))
 PY
 }
 
-# --- 1. Deep nesting (was SIGSEGV: the message echoed the value recursively) and huge values
+# --- 1. Deep nesting (was SIGSEGV: the message echoed the value recursively) and huge values (a
+# million-element gravity was echoed whole: 47 MB of stderr for five million)
 /usr/bin/python3 -c "
 import json, sys
 s = json.load(open(sys.argv[1]))
@@ -72,8 +73,8 @@ open(sys.argv[2], 'w').write(text)" "$in/good.json" "$in/deep.json"
 bad "nested 100,000 deep" "deep.json:.*gravity.*nested deeper than 64" run "$in/deep.json" --out "$out/r"
 printf '%s' "$(printf '{"a":%.0s' $(seq 70))" > "$in/deep2.json"
 bad "nested objects" "deep2.json:.*nested deeper than 64" run "$in/deep2.json" --out "$out/r"
-variant huge "s['gravity'] = [1.5] * 5000000"
-bad "5-million-element gravity, echo cut" "huge.json: gravity: must be an array of 3 numbers \(got \[1\.5,1\.5.*\.\.\. \(" \
+variant huge "s['gravity'] = [1.5] * 1000000"
+bad "million-element gravity, echo cut" "huge.json: gravity: must be an array of 3 numbers \(got \[1\.5,1\.5.*\.\.\. \(" \
   run "$in/huge.json" --out "$out/r"
 variant longkey "s['x' * 1000000] = 1"
 bad "a 1 MB key" "longkey.json: x+\.\.\.: unknown key" run "$in/longkey.json" --out "$out/r"
