@@ -82,8 +82,8 @@ Json yade_input(const scene::SceneDef& s, double dt, long steps) {
                                         : contact::NormalLaw::hertz;
   if (s.contact.law == scene::ContactLaw::linear) {
     j["kn"] = *s.contact.kn;
-    j["kt"] =
-        s.contact.kt.value_or(2.0 / 7.0 * *s.contact.kn);  // asperity's default (run_scene.cpp)
+    j["kt"] = s.contact.kt.value_or(2.0 / 7.0 *
+                                    *s.contact.kn);  // asperity's default (run/run_spheres.cpp)
   }
   // The hertz law has no tangential force: friction 0 caps YADE's shear force at zero.
   if (s.contact.law == scene::ContactLaw::hertz)

@@ -7,6 +7,7 @@
 #include <span>
 #include <string>
 #include <string_view>
+#include <vector>
 
 #include <nlohmann/json.hpp>
 
@@ -43,6 +44,9 @@ std::string closest_key(std::string_view key, std::span<const std::string_view> 
 inline std::string closest_key(std::string_view key,
                                std::initializer_list<std::string_view> allowed) {
   return closest_key(key, std::span<const std::string_view>(allowed.begin(), allowed.size()));
+}
+inline std::string closest_key(std::string_view key, const std::vector<std::string_view>& allowed) {
+  return closest_key(key, std::span<const std::string_view>(allowed));
 }
 
 // A cursor on one JSON object inside a file: every accessor validates type and range and throws
