@@ -156,6 +156,31 @@ void check_off_header(const fs::path& file, std::uintmax_t size) {
   }
   const std::uintmax_t coords = kw.find('4') != std::string::npos ? 4 : 3;
   check_declared_counts(file, "OFF", size, *nv, *nf, 2 * coords, 2 * 4);
+  // Each face line starts with its vertex count, which the reader also trusts (a face of 4e13
+  // vertices: found by fuzz_mesh_off); it must fit in the file like the header's counts.
+  std::string line;
+  std::getline(in, line);  // the rest of the counts line
+  const auto content = [](const std::string& l) {
+    const std::size_t i = l.find_first_not_of(" \t\r");
+    return i != std::string::npos && l[i] != '#';
+  };
+  for (std::uintmax_t v = 0; v < *nv && std::getline(in, line);) {
+    if (content(line)) ++v;
+  }
+  for (std::uintmax_t f = 0; f < *nf && std::getline(in, line);) {
+    if (!content(line)) continue;
+    std::istringstream l(line);
+    std::string first;
+    l >> first;
+    const bool digits = !first.empty() && std::all_of(first.begin(), first.end(), [](char c) {
+      return std::isdigit(static_cast<unsigned char>(c));
+    });
+    if (digits && (first.size() > 15 || 2 * std::stoull(first) > size)) {
+      fail(file, "OFF face " + std::to_string(f) + " declares " + first +
+                     " vertices, more than the file's " + std::to_string(size) + " bytes can hold");
+    }
+    ++f;
+  }
 }
 
 void check_ply_header(const fs::path& file, std::uintmax_t size) {
@@ -168,11 +193,28 @@ void check_ply_header(const fs::path& file, std::uintmax_t size) {
       {"char", 1},  {"uchar", 1},   {"int8", 1},   {"uint8", 1},  {"short", 2}, {"ushort", 2},
       {"int16", 2}, {"uint16", 2},  {"int", 4},    {"uint", 4},   {"int32", 4}, {"uint32", 4},
       {"float", 4}, {"float32", 4}, {"double", 8}, {"float64", 8}};
-  for (int n = 0; n < 200 && std::getline(in, line); ++n) {
+  bool ended = false, has_format = false;
+  std::getline(in, line);  // "ply", checked by the reader
+  for (int n = 0; n < 1000 && std::getline(in, line); ++n) {
+    if (!line.empty() && line.back() == '\r') line.pop_back();
     std::istringstream l(line);
     std::string kw;
     l >> kw;
-    if (kw == "end_header") break;
+    if (kw == "end_header") {
+      ended = true;
+      break;
+    }
+    // CGAL's reader trusts the header's structure (a property before any element indexes an
+    // empty list: found by fuzz_mesh_ply), so only the PLY keywords, in order, pass.
+    if (kw == "comment" || kw == "obj_info" || kw.empty()) continue;
+    if (kw != "format" && kw != "element" && kw != "property") {
+      fail(file, "PLY header line " + std::to_string(n + 2) + ": unknown keyword \"" +
+                     kw.substr(0, 20) + "\"");
+    }
+    if (kw == "property" && element.empty()) {
+      fail(file, "PLY header line " + std::to_string(n + 2) + ": a property before any element");
+    }
+    if (kw == "format") has_format = true;
     if (kw == "format") {
       std::string f;
       l >> f;
@@ -192,9 +234,13 @@ void check_ply_header(const fs::path& file, std::uintmax_t size) {
       std::string type;
       l >> type;
       auto it = kBytes.find(type);
+      if (it == kBytes.end() && type != "list") {
+        fail(file, "PLY header: unknown property type \"" + type.substr(0, 20) + "\"");
+      }
       vertex_bytes += ascii ? 2 : (it == kBytes.end() ? 1 : it->second);
     }
   }
+  if (!ended || !has_format) fail(file, "PLY header without format or end_header");
   // A face is at least a count and three indices: 8 bytes in ASCII, 4 in the smallest binary.
   check_declared_counts(file, "PLY", size, nv, nf, std::max<std::uintmax_t>(vertex_bytes, 1),
                         ascii ? 8 : 4);
