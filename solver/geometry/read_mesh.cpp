@@ -194,7 +194,8 @@ void check_ply_header(const fs::path& file, std::uintmax_t size) {
       {"int16", 2}, {"uint16", 2},  {"int", 4},    {"uint", 4},   {"int32", 4}, {"uint32", 4},
       {"float", 4}, {"float32", 4}, {"double", 8}, {"float64", 8}};
   bool ended = false, has_format = false;
-  std::getline(in, line);  // "ply", checked by the reader
+  std::getline(in, line);
+  if (lower(line).rfind("ply", 0) != 0) return;  // not PLY at all: the reader says so, with a hint
   for (int n = 0; n < 1000 && std::getline(in, line); ++n) {
     if (!line.empty() && line.back() == '\r') line.pop_back();
     std::istringstream l(line);
