@@ -13,25 +13,46 @@ namespace asperity::app {
 namespace {
 namespace fs = std::filesystem;
 
-int cmd_run(const fs::path& scene_file, const fs::path& out, bool allow_unsafe_dt, bool quiet) {
-  const scene::SceneDef s = scene::load_scene(scene_file);
-  check_out_folder(out);
+struct Args {
+  fs::path scene, out;
+  bool allow_unsafe_dt = false, quiet = false;
+  int vtk_every = 0;  // 0: the scene's output.vtk_every
+  bool vtk_ascii = false;
+};
+
+int cmd_run(const Args& a) {
+  const scene::SceneDef s = scene::load_scene(a.scene);
+  check_out_folder(a.out);
   // An earlier run's outputs in the same folder would pass for this run's if it is interrupted
   // or fails: they go before it starts (summary.json, written last, marks a complete run).
   for (const char* f : {"summary.json", "force.csv", "energy.csv"}) {
     std::error_code ec;
-    fs::remove(out / f, ec);
+    fs::remove(a.out / f, ec);
   }
-  const run::RunResult r = run::run_scene(s, {.dt = std::nullopt,
-                                              .allow_unsafe_dt = allow_unsafe_dt,
-                                              .keep_rows = true,
-                                              .progress = !quiet});
-  run::write_outputs(r, out);
+  run::RunOptions options{.dt = std::nullopt,
+                          .allow_unsafe_dt = a.allow_unsafe_dt,
+                          .keep_rows = true,
+                          .progress = !a.quiet};
+  if (const int every = a.vtk_every > 0 ? a.vtk_every : s.output.vtk_every; every > 0) {
+    options.vtk =
+        run::VtkOutput{.dir = a.out / "vtk",
+                       .every = every,
+                       .encoding = a.vtk_ascii || s.output.vtk_ascii ? io::vtk::Encoding::ascii
+                                                                     : io::vtk::Encoding::base64};
+  }
+  const run::RunResult r = run::run_scene(s, options);
+  run::write_outputs(r, a.out);
+  const fs::path& out = a.out;
+  const bool quiet = a.quiet;
   if (!quiet) {
     std::cerr << s.name << ": " << r.status << (r.message.empty() ? "" : " (" + r.message + ")")
               << ", peak force " << r.summary["peak_force"].get<double>() << " N, "
               << r.summary["steps"].get<long>() << " steps in "
               << r.summary["cpu_seconds"].get<double>() << " s CPU -> " << out.string() << "\n";
+    if (r.vtk.frames > 0) {
+      std::cerr << "  " << r.vtk.frames << " ParaView frames, " << r.vtk.bytes << " bytes -> "
+                << (out / "vtk" / "run.pvd").string() << "\n";
+    }
   }
   return r.status == "unstable" ? kExitUnstable : kExitOk;
 }
@@ -39,21 +60,23 @@ int cmd_run(const fs::path& scene_file, const fs::path& out, bool allow_unsafe_d
 }  // namespace
 
 void add_run_command(CLI::App& app, Action& action) {
-  struct Args {
-    fs::path scene, out;
-    bool allow_unsafe_dt = false, quiet = false;
-  };
   auto args = std::make_shared<Args>();
-  auto* run = app.add_subcommand(
-      "run", "Run one scene: writes DIR/summary.json, DIR/force.csv, DIR/energy.csv");
-  run->add_option("scene", args->scene, "Scene file (JSON, see docs/contract.md)")->required();
+  auto* run =
+      app.add_subcommand("run",
+                         "Run one scene: writes DIR/summary.json, DIR/force.csv, DIR/energy.csv "
+                         "(and DIR/vtk/run.pvd with --vtk-every)");
+  run->add_option("scene", args->scene, "Scene file (JSON, see docs/scenes.md)")->required();
   run->add_option("--out", args->out, "Output folder")->required();
   run->add_flag("--allow-unsafe-dt", args->allow_unsafe_dt,
                 "Run a given dt even above the predicted critical step");
   run->add_flag("-q,--quiet", args->quiet, "No progress or summary line on stderr");
-  run->callback([args, &action] {
-    action = [args] { return cmd_run(args->scene, args->out, args->allow_unsafe_dt, args->quiet); };
-  });
+  run->add_option("--vtk-every", args->vtk_every,
+                  "ParaView frames every N steps, at the peak force and at the end: "
+                  "DIR/vtk/run.pvd (overrides the scene's output.vtk_every)")
+      ->check(CLI::PositiveNumber);
+  run->add_flag("--vtk-ascii", args->vtk_ascii,
+                "Frames in ASCII instead of appended base64 (about 2.3x larger)");
+  run->callback([args, &action] { action = [args] { return cmd_run(*args); }; });
 }
 
 }  // namespace asperity::app

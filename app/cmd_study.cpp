@@ -1,64 +1,109 @@
 // `asperity study STUDY.json --out DIR`: the particle-geometry sensitivity study (issue 7):
-// runs every case not done yet, then writes the study's tables (study/study_tables.hpp).
+// runs every case not done yet, on this machine's threads or over MPI ranks (docs/cluster.md),
+// then writes the study's tables (study/study_tables.hpp).
 #include <cstdio>
 #include <filesystem>
 #include <memory>
+#include <optional>
 
 #include "app/cli_numbers.hpp"
 #include "app/commands.hpp"
 #include "app/out_folder.hpp"
+#include "cluster/world.hpp"
 #include "core/error.hpp"
 #include "study/study_def.hpp"
 #include "study/study_run.hpp"
 #include "study/study_tables.hpp"
 
 namespace asperity::app {
+namespace {
+
+struct StudyArgs {
+  std::filesystem::path study, out;
+  int jobs = 0;
+  std::string shard;
+  bool quiet = false, allow_failed = false, collect = false;
+};
+
+// `--collect`: the tables from the case folders as they are (after the shards of a job array).
+int collect(const study::StudyDef& def, const StudyArgs& args) {
+  if (!std::filesystem::exists(args.out / "study.json")) {
+    throw InputError(args.out.string() +
+                     ": no study.json: not a study folder (run the study, or "
+                     "its shards, into it first)");
+  }
+  std::optional<study::FolderLock> lock;
+  lock.emplace(args.out, study::Shard{});
+  study::adopt_folder(def, args.out);
+  const study::StudyTables tables = study::write_tables(def, args.out, study::StudyOutcome{});
+  if (!args.quiet) {
+    std::fprintf(stderr, "study %s: %d cases collected (%d done, %d failed) -> %s\n",
+                 def.name.c_str(), tables.cases, tables.done, tables.failed,
+                 (args.out / "cases.csv").string().c_str());
+  }
+  return tables.failed > 0 && !args.allow_failed ? kExitFailure : kExitOk;
+}
+
+int run(const StudyArgs& args) {
+  if (args.jobs < 0)
+    throw InputError("--jobs: must be >= 0 (got " + std::to_string(args.jobs) + ")");
+  const study::Shard shard = args.shard.empty() ? study::Shard{} : study::parse_shard(args.shard);
+  if (shard.count > 0 && args.collect) throw InputError("--collect: not with --shard");
+  const study::StudyDef def = study::load_study(args.study);
+  check_out_folder(args.out);
+  if (args.collect) {
+    if (cluster::launched_ranks() > 1) throw InputError("--collect: run it as one process");
+    return collect(def, args);
+  }
+  cluster::World world;
+  return world.guard([&] {
+    const study::StudyOutcome o = study::run_study(
+        def, args.out, {.jobs = args.jobs, .quiet = args.quiet, .shard = shard, .world = &world});
+    const int code = o.failed > 0 && !args.allow_failed ? kExitFailure : kExitOk;
+    if (!world.root()) return code;
+    // A shard's tables would hold only its cases: --collect (or a whole run) writes them.
+    if (shard.count == 0) study::write_tables(def, args.out, o);
+    if (!args.quiet) {
+      std::fprintf(stderr,
+                   "study %s%s: %d cases (%d run, %d kept from before, %d failed) in %.1f s wall, "
+                   "%.1f s CPU; %d ranks, %d workers, %.1f %% idle, %.1f s at the end with idle "
+                   "workers -> %s\n",
+                   def.name.c_str(), shard.count > 0 ? (" shard " + args.shard).c_str() : "",
+                   o.cases, o.ran, o.skipped, o.failed, o.wall_seconds, o.cpu_seconds, o.ranks,
+                   o.workers, 100 * o.idle_fraction, o.drain_seconds,
+                   shard.count > 0 ? "its cases in DIR/cases; --collect writes the tables"
+                                   : (args.out / "cases.csv").string().c_str());
+    }
+    return code;
+  });
+}
+
+}  // namespace
 
 void add_study_command(CLI::App& app, Action& action) {
-  struct Args {
-    std::filesystem::path study, out;
-    int jobs = 0;
-    bool quiet = false, allow_failed = false;
-  };
-  auto args = std::make_shared<Args>();
-  auto* cmd =
-      app.add_subcommand("study",
-                         "Particle-geometry study: particles x resolutions x models (fem, rigid, "
-                         "sphere) x placements, "
-                         "each striking a block; resumable (finished cases are kept). Writes "
-                         "DIR/cases/, DIR/cases.csv, "
-                         "DIR/classification.csv, DIR/guidelines.csv and DIR/study_summary.json");
+  auto args = std::make_shared<StudyArgs>();
+  auto* cmd = app.add_subcommand(
+      "study",
+      "Particle-geometry study: particles x resolutions x models (fem, rigid, sphere) x "
+      "placements, each striking a block; resumable (finished cases are kept). Writes DIR/cases/, "
+      "DIR/cases.csv, DIR/classification.csv, DIR/guidelines.csv and DIR/study_summary.json. "
+      "Under mpirun or srun the cases are spread over the ranks (docs/cluster.md)");
   cmd->add_option("study", args->study, "Study file (JSON, e.g. data/study/default.json)")
       ->required();
   cmd->add_option("--out", args->out, "Output folder")->required();
   cmd->add_option("-j,--jobs", args->jobs,
-                  "Worker threads (default: the study's \"jobs\", else every core)")
+                  "Worker threads per process (default: the study's \"jobs\", else every core)")
       ->check(whole_number(0, 4096));
+  cmd->add_option("--shard", args->shard,
+                  "K/N: only the K-th of N shards (every N-th particle from the K-th: its meshes "
+                  "and cases; no tables); shards may run side by side into one folder");
+  cmd->add_flag("--collect", args->collect,
+                "Run nothing: write the tables from the cases in DIR (after the shards)");
   cmd->add_flag("-q,--quiet", args->quiet, "Only errors on stderr");
   cmd->add_flag(
       "--allow-failed", args->allow_failed,
       "Exit 0 even when a case failed (the report target: its report lists the failures)");
-  cmd->callback([args, &action] {
-    action = [args] {
-      if (args->jobs < 0)
-        throw InputError("--jobs: must be >= 0 (got " + std::to_string(args->jobs) + ")");
-      const study::StudyDef def = study::load_study(args->study);
-      check_out_folder(args->out);
-      const study::StudyOutcome o =
-          study::run_study(def, args->out, {.jobs = args->jobs, .quiet = args->quiet});
-      const study::StudyTables tables = study::write_tables(def, args->out, o);
-      if (!args->quiet) {
-        std::fprintf(stderr,
-                     "study %s: %d cases (%d run, %d kept from before, %d failed) in %.1f s wall, "
-                     "%.1f s CPU "
-                     "-> %s\n",
-                     def.name.c_str(), o.cases, o.ran, o.skipped, o.failed, o.wall_seconds,
-                     o.cpu_seconds, (args->out / "cases.csv").string().c_str());
-      }
-      (void)tables;
-      return o.failed > 0 && !args->allow_failed ? kExitFailure : kExitOk;
-    };
-  });
+  cmd->callback([args, &action] { action = [args] { return run(*args); }; });
 }
 
 }  // namespace asperity::app

@@ -10,6 +10,7 @@
 #include "app/commands.hpp"
 #include "app/out_folder.hpp"
 #include "case.hpp"
+#include "cluster/task_pool.hpp"
 #include "core/error.hpp"
 #include "run/run_scene.hpp"
 #include "run/stability_sweep.hpp"
@@ -25,7 +26,45 @@ std::string csv_escape(const std::string& s) {
   return o + "\"";
 }
 
-int cmd_validate(const std::vector<fs::path>& paths, const fs::path& out, bool quiet) {
+// One case: run, outputs and check.json under DIR/cases/NAME/; the check (and the run's CPU) as
+// the payload.
+cluster::TaskReport run_one(const validation::CaseDef& def, const fs::path& out) try {
+  const validation::CaseResult r = validation::run_case(def);
+  if (r.sweep) {
+    run::write_stability(*r.sweep, out / "cases" / r.def.name);
+  } else {
+    run::write_outputs(r.run, out / "cases" / r.def.name);
+  }
+  const nlohmann::ordered_json j = validation::to_json(r);
+  {
+    std::ofstream c(out / "cases" / r.def.name / "check.json");
+    c << j.dump(2) << "\n";
+  }
+  const nlohmann::ordered_json payload = {{"check", j},
+                                          {"cpu", r.run.summary.value("cpu_seconds", 0.0)}};
+  return {.failed = !r.passed, .note = r.def.name, .payload = payload.dump()};
+} catch (const std::exception& e) {
+  // An error stops the command as it did before cases ran in a pool: raised again below, on
+  // every rank alike.
+  const bool input = dynamic_cast<const InputError*>(&e) != nullptr;
+  return {.failed = true,
+          .note = def.name,
+          .payload = nlohmann::ordered_json{{"error", e.what()}, {"input", input}}.dump()};
+}
+
+// The first case that raised an error raises it again (every rank holds every report).
+void rethrow_errors(const std::vector<cluster::TaskReport>& reports) {
+  for (const cluster::TaskReport& r : reports) {
+    const nlohmann::json p = nlohmann::json::parse(r.payload);
+    if (!p.contains("error")) continue;
+    if (p["input"].get<bool>()) throw InputError(p["error"].get<std::string>());
+    throw std::runtime_error(p["error"].get<std::string>());
+  }
+}
+
+void write_report(const std::vector<cluster::TaskReport>& reports, const fs::path& out, bool quiet);
+
+int cmd_validate(const std::vector<fs::path>& paths, const fs::path& out, int jobs, bool quiet) {
   std::vector<fs::path> files;
   for (const fs::path& p : paths) {
     for (const fs::path& f : validation::find_cases(p)) files.push_back(f);
@@ -44,56 +83,74 @@ int cmd_validate(const std::vector<fs::path>& paths, const fs::path& out, bool q
   }
   check_out_folder(out);
 
-  fs::create_directories(out / "cases");
+  cluster::World world;
+  return world.guard([&] {
+    if (world.root()) fs::create_directories(out / "cases");
+    // Each case on whichever rank's worker is free (cases in their order: they cost about the
+    // same); its outputs on disk, its check back to rank 0 as the report's payload.
+    std::vector<int> order(cases.size());
+    for (std::size_t k = 0; k < cases.size(); ++k) order[k] = static_cast<int>(k);
+    const auto t0 = std::chrono::steady_clock::now();
+    int reported = 0;
+    const std::vector<cluster::TaskReport> reports = cluster::run_tasks(
+        world, static_cast<int>(cases.size()), order, jobs,
+        [&](int k) { return run_one(cases[static_cast<std::size_t>(k)], out); },
+        [&](const cluster::TaskReport& r, int) {
+          ++reported;
+          if (quiet) return;
+          const nlohmann::ordered_json p = nlohmann::ordered_json::parse(r.payload);
+          if (p.contains("error")) return;
+          const nlohmann::ordered_json& j = p["check"];
+          const double el =
+              std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+          std::fprintf(stderr, "[%d/%zu] %-48s %s  (%.2f s CPU; %.0f s elapsed)\n", reported,
+                       cases.size(), j["case"].get<std::string>().c_str(),
+                       j["passed"].get<bool>() ? "pass" : "FAIL", p["cpu"].get<double>(), el);
+          if (!j["passed"].get<bool>()) {
+            for (const auto& c : j["checks"]) {
+              if (!c["passed"].get<bool>()) {
+                std::fprintf(stderr, "    %s: expected %s, got %s\n",
+                             c["quantity"].get<std::string>().c_str(), c["expected"].dump().c_str(),
+                             c["got"].dump().c_str());
+              }
+            }
+          }
+        });
+    rethrow_errors(reports);
+    int failed = 0;
+    for (const cluster::TaskReport& r : reports) failed += r.failed ? 1 : 0;
+    if (world.root()) write_report(reports, out, quiet);
+    return failed == 0 ? kExitOk : kExitFailure;
+  });
+}
+
+// DIR/results.csv, report.md and validation.json from every case's check, in the cases' order.
+void write_report(const std::vector<cluster::TaskReport>& reports, const fs::path& out,
+                  bool quiet) {
   nlohmann::ordered_json all = nlohmann::ordered_json::array();
   std::ostringstream csv, md;
   csv << "case,quantity,reference,expected,got,rel_error,rel_tol,abs_tol,passed,cpu_seconds\n";
   int failed = 0;
   double cpu_total = 0;
-  const auto t0 = std::chrono::steady_clock::now();
-  for (std::size_t k = 0; k < cases.size(); ++k) {
-    const validation::CaseResult r = validation::run_case(cases[k]);
-    if (r.sweep) {
-      run::write_stability(*r.sweep, out / "cases" / r.def.name);
-    } else {
-      run::write_outputs(r.run, out / "cases" / r.def.name);
-    }
-    const nlohmann::ordered_json j = validation::to_json(r);
-    {
-      std::ofstream c(out / "cases" / r.def.name / "check.json");
-      c << j.dump(2) << "\n";
-    }
-    all.push_back(j);
-    const double cpu = r.run.summary.value("cpu_seconds", 0.0);
+  for (const cluster::TaskReport& r : reports) {
+    const nlohmann::ordered_json p = nlohmann::ordered_json::parse(r.payload);
+    const nlohmann::ordered_json& j = p["check"];
+    const double cpu = p["cpu"].get<double>();
     cpu_total += cpu;
-    if (!r.passed) ++failed;
+    if (!j["passed"].get<bool>()) ++failed;
     for (const auto& c : j["checks"]) {
-      csv << csv_escape(r.def.name) << ',' << c["quantity"].get<std::string>() << ','
-          << c["reference"].get<std::string>() << ',' << c["expected"].dump() << ','
+      csv << csv_escape(j["case"].get<std::string>()) << ',' << c["quantity"].get<std::string>()
+          << ',' << c["reference"].get<std::string>() << ',' << c["expected"].dump() << ','
           << c["got"].dump() << ',' << (c.contains("rel_error") ? c["rel_error"].dump() : "") << ','
           << (c.contains("rel_tol") ? c["rel_tol"].dump() : "") << ','
           << (c.contains("abs_tol") ? c["abs_tol"].dump() : "") << ','
           << (c["passed"].get<bool>() ? "true" : "false") << ',' << cpu << '\n';
     }
-    if (!quiet) {
-      const double el =
-          std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
-      std::fprintf(stderr, "[%zu/%zu] %-48s %s  (%.2f s CPU; %.0f s elapsed)\n", k + 1,
-                   cases.size(), r.def.name.c_str(), r.passed ? "pass" : "FAIL", cpu, el);
-      if (!r.passed) {
-        for (const auto& c : j["checks"]) {
-          if (!c["passed"].get<bool>()) {
-            std::fprintf(stderr, "    %s: expected %s, got %s\n",
-                         c["quantity"].get<std::string>().c_str(), c["expected"].dump().c_str(),
-                         c["got"].dump().c_str());
-          }
-        }
-      }
-    }
+    all.push_back(j);
   }
+  const std::size_t n = reports.size();
   md << "# asperity validation report\n\n"
-     << cases.size() - failed << " of " << cases.size() << " cases pass; " << cpu_total
-     << " s CPU in all.\n\n"
+     << n - failed << " of " << n << " cases pass; " << cpu_total << " s CPU in all.\n\n"
      << "Each case is a scene plus expected values (`validation/cases/`). `rel error` is "
         "(got − expected)/|expected|; a check passes when |got − expected| ≤ rel_tol·|expected| + "
         "abs_tol, or within its max/min bound.\n\n"
@@ -126,17 +183,16 @@ int cmd_validate(const std::vector<fs::path>& paths, const fs::path& out, bool q
   std::ofstream(out / "results.csv") << csv.str();
   std::ofstream(out / "report.md") << md.str();
   nlohmann::ordered_json summary;
-  summary["cases"] = cases.size();
-  summary["passed"] = cases.size() - failed;
+  summary["cases"] = n;
+  summary["passed"] = n - failed;
   summary["failed"] = failed;
   summary["cpu_seconds"] = cpu_total;
   summary["results"] = all;
   std::ofstream(out / "validation.json") << summary.dump(2) << "\n";
   if (!quiet) {
-    std::fprintf(stderr, "%zu of %zu cases pass -> %s\n", cases.size() - failed, cases.size(),
+    std::fprintf(stderr, "%zu of %zu cases pass -> %s\n", n - failed, n,
                  (out / "report.md").string().c_str());
   }
-  return failed == 0 ? kExitOk : kExitFailure;
 }
 
 }  // namespace
@@ -145,18 +201,22 @@ void add_validate_command(CLI::App& app, Action& action) {
   struct Args {
     std::vector<fs::path> cases;
     fs::path out;
+    int jobs = 1;
     bool quiet = false;
   };
   auto args = std::make_shared<Args>();
   auto* validate = app.add_subcommand(
       "validate",
       "Run validation cases (files or folders of case JSON) and check them: writes "
-      "DIR/report.md, DIR/results.csv, DIR/validation.json, DIR/cases/NAME/");
+      "DIR/report.md, DIR/results.csv, DIR/validation.json, DIR/cases/NAME/. Under mpirun or srun "
+      "the cases are spread over the ranks (docs/cluster.md)");
   validate->add_option("cases", args->cases, "Case files or folders")->required();
   validate->add_option("--out", args->out, "Output folder")->required();
+  validate->add_option("-j,--jobs", args->jobs, "Worker threads per process (default 1)")
+      ->check(CLI::PositiveNumber);
   validate->add_flag("-q,--quiet", args->quiet, "Only errors on stderr");
   validate->callback([args, &action] {
-    action = [args] { return cmd_validate(args->cases, args->out, args->quiet); };
+    action = [args] { return cmd_validate(args->cases, args->out, args->jobs, args->quiet); };
   });
 }
 

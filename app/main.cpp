@@ -6,6 +6,7 @@
 #include <CLI/CLI.hpp>
 
 #include "app/commands.hpp"
+#include "cluster/world.hpp"
 #include "core/error.hpp"
 #include "core/interrupt.hpp"
 
@@ -85,7 +86,8 @@ int main(int argc, char** argv) {
   try {
     return action ? action() : kExitBadInput;
   } catch (const InputError& e) {
-    std::cerr << "asperity: " << one_line(e.what()) << "\n";
+    // Under mpirun every rank meets the same bad input: rank 0 says it once.
+    if (cluster::launched_rank() == 0) std::cerr << "asperity: " << one_line(e.what()) << "\n";
     return kExitBadInput;
   } catch (const std::exception& e) {
     std::cerr << "asperity: error: " << one_line(e.what()) << "\n";

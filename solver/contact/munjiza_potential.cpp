@@ -82,16 +82,61 @@ constexpr int kFace[4][3] = {{1, 2, 3}, {0, 3, 2}, {0, 1, 3}, {0, 2, 1}};
 constexpr int kInner[6][4] = {{0, 1, 2, 3}, {0, 2, 1, 3}, {0, 3, 1, 2},
                               {1, 2, 0, 3}, {1, 3, 0, 2}, {2, 3, 0, 1}};
 
-// Integrals over a polygon of the linear φ (given per vertex) against linear weights, by a
-// triangle fan from vertex 0 (exact: the integrands are at most quadratic).
-struct FaceIntegrals {
-  double phi_n[3] = {0, 0, 0};     // ∫ φ N_k dS, carried aux[0..2]
-  double phi_l[4] = {0, 0, 0, 0};  // ∫ φ L_k dS, the clipping functions
-  Vec3 phi_x = Vec3::Zero();       // ∫ φ x dS
-  double phi = 0;                  // ∫ φ dS
-  double phi2 = 0;                 // ∫ φ² dS
-  double max_l = 0;                // largest L_m at a vertex (depth / height)
-};
+// True when every vertex of the triangle lies beyond one face plane of the element whose
+// barycentric coordinates it carries (L_m < 0 at all three): no part of it is inside.
+bool beyond_one_face(const Polygon& tri) {
+  bool outside = false;
+  for (int m = 0; m < 4 && !outside; ++m) {
+    outside = tri.v[0].l[m] < 0 && tri.v[1].l[m] < 0 && tri.v[2].l[m] < 0;
+  }
+  return outside;
+}
+
+// The part of `in` inside the element whose barycentrics it carries (L_m ≥ 0 for every m), into
+// `inside`; `tmp` is scratch.
+void clip_to_element(const Polygon& in, Polygon& tmp, Polygon& inside) {
+  clip(in, tmp, [](const Vertex& v) { return v.l[0]; });
+  clip(tmp, inside, [](const Vertex& v) { return v.l[1]; });
+  clip(inside, tmp, [](const Vertex& v) { return v.l[2]; });
+  clip(tmp, inside, [](const Vertex& v) { return v.l[3]; });
+}
+
+// The energy terms of t's internal faces (the centroid split) inside c: each face between
+// sub-tetrahedra m and m2 adds ∮ φ² g·n dS to m and takes it from m2 (clipping functions: c's
+// barycentrics).
+void inner_faces_energy(const TetNodes& t, const BaryMap& cm, const BaryMap& tm,
+                        double (&energy_sum)[4]) {
+  Polygon tri, inside, tmp;
+  const Vec3 centroid = 0.25 * (t[0] + t[1] + t[2] + t[3]);
+  for (const auto& e : kInner) {
+    const int i = e[0], j = e[1], m = e[2], m2 = e[3];
+    const Vec3 d = tm.grad[m] - tm.grad[m2];  // points out of sub-tetrahedron m
+    const double dn = d.norm();
+    if (!(dn > 0)) continue;
+    const Vec3 n = d / dn;
+    tri.n = 3;
+    const Vec3 pts[3] = {t[i], t[j], centroid};
+    const double phis[3] = {0, 0, 1};
+    for (int k = 0; k < 3; ++k) {
+      tri.v[k].x = pts[k];
+      cm.coords(pts[k], tri.v[k].l);
+      tri.v[k].aux[0] = phis[k];
+      tri.v[k].aux[1] = tri.v[k].aux[2] = tri.v[k].aux[3] = 0;
+    }
+    if (beyond_one_face(tri)) continue;
+    clip_to_element(tri, tmp, inside);  // inside c
+    double i_phi2 = 0;
+    for (int k = 1; k + 1 < inside.n; ++k) {
+      const Vertex &v0 = inside.v[0], &v1 = inside.v[k], &v2 = inside.v[k + 1];
+      const double a = std::abs(0.5 * (v1.x - v0.x).cross(v2.x - v0.x).dot(n));
+      const double p0 = v0.aux[0], p1 = v1.aux[0], p2 = v2.aux[0];
+      const double sp = p0 + p1 + p2;
+      i_phi2 += a / 12.0 * (p0 * p0 + p1 * p1 + p2 * p2 + sp * sp);
+    }
+    energy_sum[m] += i_phi2 * 4.0 * tm.grad[m].dot(n);
+    energy_sum[m2] -= i_phi2 * 4.0 * tm.grad[m2].dot(n);
+  }
+}
 
 // One direction: the faces of contactor c are clipped against the sub-tetrahedra of target t;
 // forces to fc (on c's nodes) and ft (on t's nodes); returns U_t = p ∫_{c∩t} φ_t dV if asked.
@@ -115,19 +160,9 @@ double one_way(const TetNodes& c, const BaryMap& cm, const TetNodes& t, const Ba
       tm.coords(v.x, v.l);
       v.aux[0] = k == 0, v.aux[1] = k == 1, v.aux[2] = k == 2, v.aux[3] = 0;
     }
-    // Quick reject: all three vertices beyond one face plane of t.
-    bool outside = false;
-    for (int m = 0; m < 4 && !outside; ++m) {
-      outside = tri.v[0].l[m] < 0 && tri.v[1].l[m] < 0 && tri.v[2].l[m] < 0;
-    }
-    if (outside) continue;
-    // Inside t: L_m ≥ 0 for every m.
-    clip(tri, tmp, [](const Vertex& v) { return v.l[0]; });
-    clip(tmp, inside, [](const Vertex& v) { return v.l[1]; });
-    clip(inside, tmp, [](const Vertex& v) { return v.l[2]; });
-    clip(tmp, inside, [](const Vertex& v) { return v.l[3]; });
+    if (beyond_one_face(tri)) continue;  // quick reject
+    clip_to_element(tri, tmp, inside);   // inside t
     if (inside.n == 0) continue;
-    Vec3 f_face = Vec3::Zero();
     double phi_n[3] = {0, 0, 0}, phi_l[4] = {0, 0, 0, 0};
     for (int m = 0; m < 4; ++m) {
       // Sub-tetrahedron m: L_k − L_m ≥ 0 for k ≠ m.
@@ -170,49 +205,13 @@ double one_way(const TetNodes& c, const BaryMap& cm, const TetNodes& t, const Ba
       if (with_energy) energy_sum[m] += i_phi2 * 4.0 * tm.grad[m].dot(normal);
     }
     // Traction −p φ n on c's face; the reaction on t.
-    f_face = -penalty * normal;
+    const Vec3 f_face = -penalty * normal;
     for (int k = 0; k < 3; ++k) fc[fn[k]] += phi_n[k] * f_face;
     for (int k = 0; k < 4; ++k) ft[k] -= phi_l[k] * f_face;
   }
   if (!with_energy) return 0;
 
-  // t's internal faces clipped against c (clipping functions: c's barycentrics).
-  const Vec3 centroid = 0.25 * (t[0] + t[1] + t[2] + t[3]);
-  for (const auto& e : kInner) {
-    const int i = e[0], j = e[1], m = e[2], m2 = e[3];
-    const Vec3 d = tm.grad[m] - tm.grad[m2];  // points out of sub-tetrahedron m
-    const double dn = d.norm();
-    if (!(dn > 0)) continue;
-    const Vec3 n = d / dn;
-    tri.n = 3;
-    const Vec3 pts[3] = {t[i], t[j], centroid};
-    const double phis[3] = {0, 0, 1};
-    for (int k = 0; k < 3; ++k) {
-      tri.v[k].x = pts[k];
-      cm.coords(pts[k], tri.v[k].l);
-      tri.v[k].aux[0] = phis[k];
-      tri.v[k].aux[1] = tri.v[k].aux[2] = tri.v[k].aux[3] = 0;
-    }
-    bool outside = false;
-    for (int k = 0; k < 4 && !outside; ++k) {
-      outside = tri.v[0].l[k] < 0 && tri.v[1].l[k] < 0 && tri.v[2].l[k] < 0;
-    }
-    if (outside) continue;
-    clip(tri, tmp, [](const Vertex& v) { return v.l[0]; });
-    clip(tmp, inside, [](const Vertex& v) { return v.l[1]; });
-    clip(inside, tmp, [](const Vertex& v) { return v.l[2]; });
-    clip(tmp, inside, [](const Vertex& v) { return v.l[3]; });
-    double i_phi2 = 0;
-    for (int k = 1; k + 1 < inside.n; ++k) {
-      const Vertex &v0 = inside.v[0], &v1 = inside.v[k], &v2 = inside.v[k + 1];
-      const double a = std::abs(0.5 * (v1.x - v0.x).cross(v2.x - v0.x).dot(n));
-      const double p0 = v0.aux[0], p1 = v1.aux[0], p2 = v2.aux[0];
-      const double sp = p0 + p1 + p2;
-      i_phi2 += a / 12.0 * (p0 * p0 + p1 * p1 + p2 * p2 + sp * sp);
-    }
-    energy_sum[m] += i_phi2 * 4.0 * tm.grad[m].dot(n);
-    energy_sum[m2] -= i_phi2 * 4.0 * tm.grad[m2].dot(n);
-  }
+  inner_faces_energy(t, cm, tm, energy_sum);
   double u = 0;
   // g_m = 4 ∇L_m: ∫ φ dV = Σ φ² g·n / (2 |g|²).
   for (int m = 0; m < 4; ++m) u += energy_sum[m] / (2.0 * 16.0 * gn[m] * gn[m]);

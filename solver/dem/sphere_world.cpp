@@ -111,20 +111,19 @@ bool needs_rebuild(const SphereWorld& world) {
   return false;
 }
 
-void compute_forces(SphereWorld& w, double dt) {
-  // Dashpots see the velocity at the end of the step, predicted with last step's acceleration
-  // (v_{n+1} ≈ v_{n+½} + ½ dt a_n): a second-order estimate where the half-step velocity alone
-  // lags by ½ dt a and biases damped peaks and restitution at coarse steps.
+// Dashpots see the velocity at the end of the step, predicted with last step's acceleration
+// (v_{n+1} ≈ v_{n+½} + ½ dt a_n): a second-order estimate where the half-step velocity alone
+// lags by ½ dt a and biases damped peaks and restitution at coarse steps.
+void predict_end_velocity(SphereWorld& w, double dt) {
   w.v_end = w.v;
   for (int i = 0; i < w.size(); ++i) {
     if (!w.fixed[i]) w.v_end.col(i) += 0.5 * dt * (w.force.col(i) / w.mass[i] + w.gravity);
   }
-  w.force.setZero();
-  w.torque.setZero();
-  w.contact_energy = 0;
-  w.contacts.reset(w.contacts.size());
-  const int nm = static_cast<int>(w.materials.size());
+}
 
+// Sphere–sphere contacts of the candidate pairs.
+void pair_forces(SphereWorld& w, double dt) {
+  const int nm = static_cast<int>(w.materials.size());
   for (PairContact& p : w.pairs) {
     const int i = p.i, j = p.j;
     const Vec3 d = w.x.col(i) - w.x.col(j);
@@ -162,38 +161,44 @@ void compute_forces(SphereWorld& w, double dt) {
     p.touching = true;
     w.contacts.add(w.body[i], w.body[j], c.force, c.normal_force, overlap);
   }
+}
 
+// Overlap (m) of a sphere (centre x, radius r) with a wall, and the wall's outward normal there.
+double wall_overlap(const Wall& wall, const Vec3& x, double r, Vec3& normal) {
+  if (wall.kind == WallKind::plane) {
+    normal = wall.b;
+    return r - (x - wall.a).dot(normal);
+  }
+  const Vec3 closest = x.cwiseMax(wall.a).cwiseMin(wall.b);
+  const Vec3 diff = x - closest;
+  const double dist = diff.norm();
+  if (dist > 0) {
+    normal = diff / dist;
+    return r - dist;
+  }
+  // Centre inside the box: push out through the nearest face.
+  const Vec3 lo = x - wall.a, hi = wall.b - x;
+  Eigen::Index kl, kh;
+  const double dl = lo.minCoeff(&kl), dh = hi.minCoeff(&kh);
+  normal = Vec3::Zero();
+  if (dl < dh)
+    normal[kl] = -1;
+  else
+    normal[kh] = 1;
+  return r + std::min(dl, dh);
+}
+
+// Sphere–wall contacts (planes and boxes) of every moving sphere.
+void wall_forces(SphereWorld& w, double dt) {
+  const int nm = static_cast<int>(w.materials.size());
   const int n = w.size();
   for (std::size_t k = 0; k < w.walls.size(); ++k) {
     const Wall& wall = w.walls[k];
     for (int i = 0; i < n; ++i) {
       if (w.fixed[i]) continue;
       WallContact& h = w.wall_contacts[k * n + i];
-      const Vec3 xi = w.x.col(i);
       Vec3 normal;
-      double overlap;
-      if (wall.kind == WallKind::plane) {
-        normal = wall.b;
-        overlap = w.radius[i] - (xi - wall.a).dot(normal);
-      } else {
-        const Vec3 closest = xi.cwiseMax(wall.a).cwiseMin(wall.b);
-        const Vec3 diff = xi - closest;
-        const double dist = diff.norm();
-        if (dist > 0) {
-          normal = diff / dist;
-          overlap = w.radius[i] - dist;
-        } else {  // centre inside the box: push out through the nearest face
-          const Vec3 lo = xi - wall.a, hi = wall.b - xi;
-          Eigen::Index kl, kh;
-          const double dl = lo.minCoeff(&kl), dh = hi.minCoeff(&kh);
-          normal = Vec3::Zero();
-          if (dl < dh)
-            normal[kl] = -1;
-          else
-            normal[kh] = 1;
-          overlap = w.radius[i] + std::min(dl, dh);
-        }
-      }
+      const double overlap = wall_overlap(wall, w.x.col(i), w.radius[i], normal);
       if (overlap <= 0) {
         w.contacts.gap(w.body[i], wall.body, overlap);
         h.touching = false;
@@ -221,6 +226,16 @@ void compute_forces(SphereWorld& w, double dt) {
       w.contacts.add(w.body[i], wall.body, c.force, c.normal_force, overlap);
     }
   }
+}
+
+void compute_forces(SphereWorld& w, double dt) {
+  predict_end_velocity(w, dt);
+  w.force.setZero();
+  w.torque.setZero();
+  w.contact_energy = 0;
+  w.contacts.reset(w.contacts.size());
+  pair_forces(w, dt);
+  wall_forces(w, dt);
 }
 
 }  // namespace

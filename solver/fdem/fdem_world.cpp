@@ -199,6 +199,7 @@ void compute_forces(World& w, double dt) {
   w.f.setZero();
   const std::uint64_t t0 = ticks();
   contact_forces(w, dt);
+  if (w.keep_contact_force) w.f_contact = w.f;  // f held the contact forces only, so far
   const std::uint64_t t1 = ticks();
   internal_forces(w, dt);
   w.profile.contact += t1 - t0;
@@ -234,11 +235,24 @@ void drift(World& w, double dt) {
   }
 }
 
-}  // namespace
+// make_world's phases, in the order it calls them.
 
-World make_world(const WorldDef& def) {
-  World w;
-  w.gravity = def.gravity;
+// Surface faces with their sub-tetrahedron height (centroid to face, 3V/(4A)), for the
+// contact time step.
+struct Face {
+  int body;
+  int nodes[3];
+  double area, height;
+};
+
+// What make_world gathers body by body before it moves it into the world.
+struct SurfaceLists {
+  std::vector<int> tet_nodes, tet_body;  // surface-adjacent tetrahedra (global nodes), owner
+  std::vector<double> tet_height;        // largest sub-tetrahedron height of each
+  std::vector<Face> faces;
+};
+
+void allocate_nodes(World& w, const WorldDef& def) {
   int n_nodes = 0;
   for (const BodyDef& b : def.bodies) n_nodes += static_cast<int>(b.mesh.nodes.cols());
   w.x.resize(3, n_nodes);
@@ -247,141 +261,152 @@ World make_world(const WorldDef& def) {
   w.mass.assign(n_nodes, 0.0);
   w.inv_mass.assign(n_nodes, 0.0);
   w.node_body.assign(n_nodes, -1);
-  std::vector<int> st_nodes, st_body;
-  std::vector<double> st_height;
-  // Surface faces with their sub-tetrahedron height (centroid to face, 3V/(4A)), for the
-  // contact time step.
-  struct Face {
-    int body;
-    int nodes[3];
-    double area, height;
-  };
-  std::vector<Face> faces;
-  int offset = 0;
-  double young_max = 0;
-  for (std::size_t bi = 0; bi < def.bodies.size(); ++bi) {
-    const BodyDef& d = def.bodies[bi];
-    const std::string what = "body \"" + d.name + "\"";
-    const int nn = static_cast<int>(d.mesh.nodes.cols());
-    if (nn < 4 || d.mesh.tets.cols() == 0 || d.mesh.surface.cols() == 0) {
-      throw InputError(what + ": mesh has no tetrahedra or no surface");
+}
+
+void check_mesh(const BodyDef& d, const std::string& what) {
+  const int nn = static_cast<int>(d.mesh.nodes.cols());
+  if (nn < 4 || d.mesh.tets.cols() == 0 || d.mesh.surface.cols() == 0) {
+    throw InputError(what + ": mesh has no tetrahedra or no surface");
+  }
+  if (d.mesh.tets.minCoeff() < 0 || d.mesh.tets.maxCoeff() >= nn || d.mesh.surface.minCoeff() < 0 ||
+      d.mesh.surface.maxCoeff() >= nn) {
+    throw InputError(what + ": mesh refers to a node that does not exist");
+  }
+}
+
+// Bodies and masses: the body's nodes at `offset`, their lumped masses, and its elements
+// (deformable) or its rigid state (rigid).
+Body add_body(World& w, const BodyDef& d, int bi, int offset, const std::string& what) {
+  const int nn = static_cast<int>(d.mesh.nodes.cols());
+  Body body{.name = d.name, .kind = d.kind, .node_begin = offset, .node_end = offset + nn};
+  w.x.middleCols(offset, nn) = d.mesh.nodes;
+  for (int i = offset; i < offset + nn; ++i) w.node_body[i] = bi;
+  const Eigen::Matrix4Xi tets = d.mesh.tets.array() + offset;
+  // Every body's elements give the lumped masses the contact time step uses (a rigid body's
+  // too: constraining nodes to move rigidly only lowers the highest frequency).
+  fem::TetElements e = fem::make_tet_elements(w.x, tets, d.material.young, d.material.poisson,
+                                              d.material.density, 0.0, what);
+  if (d.kind == BodyKind::deformable && d.damping_ratio > 0) {
+    // ξ = β ω / 2 for stiffness-proportional damping, at the body's highest element frequency.
+    e.damping = 2 * d.damping_ratio / fem::element_critical_step(e).omega_max;
+  }
+  std::vector<double> lumped(static_cast<std::size_t>(w.node_count()), 0.0);
+  fem::add_lumped_mass(e, lumped);
+  Vec3 centre;
+  Mat3 inertia;
+  mass_properties(d.mesh, d.material.density, body.mass, centre, inertia);
+  if (d.kind != BodyKind::fixed) {
+    for (int i = offset; i < offset + nn; ++i) w.mass[i] = lumped[i];
+  }
+  if (d.kind == BodyKind::deformable) {
+    for (int i = offset; i < offset + nn; ++i) {
+      w.inv_mass[i] = 1.0 / w.mass[i];
+      w.v.col(i) = d.velocity + d.angular_velocity.cross(w.x.col(i) - centre);
     }
-    if (d.mesh.tets.minCoeff() < 0 || d.mesh.tets.maxCoeff() >= nn ||
-        d.mesh.surface.minCoeff() < 0 || d.mesh.surface.maxCoeff() >= nn) {
-      throw InputError(what + ": mesh refers to a node that does not exist");
+    body.elements = static_cast<int>(w.elements.size());
+    w.elements.push_back(std::move(e));
+  } else if (d.kind == BodyKind::rigid) {
+    RigidBody rb;
+    rb.body = bi;
+    rb.centre = rb.centre_initial = centre;
+    rb.velocity = d.velocity;
+    rb.omega = d.angular_velocity;
+    rb.mass = body.mass;
+    rb.inertia_body = inertia;
+    rb.r_body = d.mesh.nodes.colwise() - centre;
+    body.rigid = static_cast<int>(w.rigid.size());
+    w.rigid.push_back(std::move(rb));
+  }
+  return body;
+}
+
+// Surface-adjacent tetrahedra: those with a node on the surface, with their largest
+// sub-tetrahedron height.
+void add_surface_tets(SurfaceLists& s, const BodyDef& d, int bi, int offset) {
+  std::vector<std::uint8_t> on_surface(static_cast<std::size_t>(d.mesh.nodes.cols()), 0);
+  for (Eigen::Index k = 0; k < d.mesh.surface.size(); ++k) on_surface[d.mesh.surface.data()[k]] = 1;
+  for (Eigen::Index k = 0; k < d.mesh.tets.cols(); ++k) {
+    const auto t = d.mesh.tets.col(k);
+    if (!(on_surface[t[0]] || on_surface[t[1]] || on_surface[t[2]] || on_surface[t[3]])) continue;
+    for (int i = 0; i < 4; ++i) s.tet_nodes.push_back(t[i] + offset);
+    s.tet_body.push_back(bi);
+    // h_m = 3V/(4 A_m): the largest belongs to the smallest face.
+    Vec3 p[4];
+    for (int i = 0; i < 4; ++i) p[i] = d.mesh.nodes.col(t[i]);
+    double a_min = 1e300;
+    for (int skip = 0; skip < 4; ++skip) {
+      const Vec3 &q0 = p[(skip + 1) % 4], &q1 = p[(skip + 2) % 4], &q2 = p[(skip + 3) % 4];
+      a_min = std::min(a_min, 0.5 * (q1 - q0).cross(q2 - q0).norm());
     }
-    Body body{.name = d.name, .kind = d.kind, .node_begin = offset, .node_end = offset + nn};
-    // The penalty scales with the bodies that deform or move; a fixed block only supplies the
-    // target (a stiff steel block must not shrink the step of a softer rock particle).
-    if (d.kind != BodyKind::fixed) young_max = std::max(young_max, d.material.young);
-    w.x.middleCols(offset, nn) = d.mesh.nodes;
-    for (int i = offset; i < offset + nn; ++i) w.node_body[i] = static_cast<int>(bi);
-    const Eigen::Matrix4Xi tets = d.mesh.tets.array() + offset;
-    // Every body's elements give the lumped masses the contact time step uses (a rigid body's
-    // too: constraining nodes to move rigidly only lowers the highest frequency).
-    fem::TetElements e = fem::make_tet_elements(w.x, tets, d.material.young, d.material.poisson,
-                                                d.material.density, 0.0, what);
-    if (d.kind == BodyKind::deformable && d.damping_ratio > 0) {
-      // ξ = β ω / 2 for stiffness-proportional damping, at the body's highest element frequency.
-      e.damping = 2 * d.damping_ratio / fem::element_critical_step(e).omega_max;
-    }
-    std::vector<double> lumped(n_nodes, 0.0);
-    fem::add_lumped_mass(e, lumped);
-    Vec3 centre;
-    Mat3 inertia;
-    mass_properties(d.mesh, d.material.density, body.mass, centre, inertia);
-    if (d.kind != BodyKind::fixed) {
-      for (int i = offset; i < offset + nn; ++i) w.mass[i] = lumped[i];
-    }
-    if (d.kind == BodyKind::deformable) {
-      for (int i = offset; i < offset + nn; ++i) {
-        w.inv_mass[i] = 1.0 / w.mass[i];
-        w.v.col(i) = d.velocity + d.angular_velocity.cross(w.x.col(i) - centre);
+    s.tet_height.push_back(0.75 * tet_volume(p[0], p[1], p[2], p[3]) / a_min);
+  }
+}
+
+// Surface faces: each surface triangle with the tetrahedron it bounds (its area and
+// sub-tetrahedron height); a triangle that bounds none is an input error.
+void add_surface_faces(SurfaceLists& s, const BodyDef& d, int bi, int offset,
+                       const std::string& what) {
+  std::map<std::array<int, 3>, int> face_tet;
+  for (Eigen::Index k = 0; k < d.mesh.tets.cols(); ++k) {
+    const auto t = d.mesh.tets.col(k);
+    for (int skip = 0; skip < 4; ++skip) {
+      std::array<int, 3> key{};
+      for (int i = 0, j = 0; i < 4; ++i) {
+        if (i != skip) key[j++] = t[i];
       }
-      body.elements = static_cast<int>(w.elements.size());
-      w.elements.push_back(std::move(e));
-    } else if (d.kind == BodyKind::rigid) {
-      RigidBody rb;
-      rb.body = static_cast<int>(bi);
-      rb.centre = rb.centre_initial = centre;
-      rb.velocity = d.velocity;
-      rb.omega = d.angular_velocity;
-      rb.mass = body.mass;
-      rb.inertia_body = inertia;
-      rb.r_body = d.mesh.nodes.colwise() - centre;
-      body.rigid = static_cast<int>(w.rigid.size());
-      w.rigid.push_back(std::move(rb));
-    }
-    // Surface-adjacent tetrahedra: those with a node on the surface.
-    std::vector<std::uint8_t> on_surface(nn, 0);
-    for (Eigen::Index k = 0; k < d.mesh.surface.size(); ++k)
-      on_surface[d.mesh.surface.data()[k]] = 1;
-    std::map<std::array<int, 3>, int> face_tet;
-    for (Eigen::Index k = 0; k < d.mesh.tets.cols(); ++k) {
-      const auto t = d.mesh.tets.col(k);
-      if (on_surface[t[0]] || on_surface[t[1]] || on_surface[t[2]] || on_surface[t[3]]) {
-        for (int i = 0; i < 4; ++i) st_nodes.push_back(t[i] + offset);
-        st_body.push_back(static_cast<int>(bi));
-        // h_m = 3V/(4 A_m): the largest belongs to the smallest face.
-        Vec3 p[4];
-        for (int i = 0; i < 4; ++i) p[i] = d.mesh.nodes.col(t[i]);
-        double a_min = 1e300;
-        for (int skip = 0; skip < 4; ++skip) {
-          const Vec3 &q0 = p[(skip + 1) % 4], &q1 = p[(skip + 2) % 4], &q2 = p[(skip + 3) % 4];
-          a_min = std::min(a_min, 0.5 * (q1 - q0).cross(q2 - q0).norm());
-        }
-        st_height.push_back(0.75 * tet_volume(p[0], p[1], p[2], p[3]) / a_min);
-      }
-      for (int skip = 0; skip < 4; ++skip) {
-        std::array<int, 3> key{};
-        for (int i = 0, j = 0; i < 4; ++i) {
-          if (i != skip) key[j++] = t[i];
-        }
-        std::sort(key.begin(), key.end());
-        face_tet[key] = static_cast<int>(k);
-      }
-    }
-    for (Eigen::Index k = 0; k < d.mesh.surface.cols(); ++k) {
-      std::array<int, 3> key{d.mesh.surface(0, k), d.mesh.surface(1, k), d.mesh.surface(2, k)};
       std::sort(key.begin(), key.end());
-      const auto it = face_tet.find(key);
-      if (it == face_tet.end()) {
-        throw InputError(what + ": surface triangle " + std::to_string(k) +
-                         " is not a face of any tetrahedron");
-      }
-      const Vec3 a = d.mesh.nodes.col(d.mesh.surface(0, k)),
-                 b = d.mesh.nodes.col(d.mesh.surface(1, k)),
-                 c = d.mesh.nodes.col(d.mesh.surface(2, k));
-      const double area = 0.5 * (b - a).cross(c - a).norm();
-      const auto t = d.mesh.tets.col(it->second);
-      const double v = tet_volume(d.mesh.nodes.col(t[0]), d.mesh.nodes.col(t[1]),
-                                  d.mesh.nodes.col(t[2]), d.mesh.nodes.col(t[3]));
-      faces.push_back({.body = static_cast<int>(bi),
+      face_tet[key] = static_cast<int>(k);
+    }
+  }
+  for (Eigen::Index k = 0; k < d.mesh.surface.cols(); ++k) {
+    std::array<int, 3> key{d.mesh.surface(0, k), d.mesh.surface(1, k), d.mesh.surface(2, k)};
+    std::sort(key.begin(), key.end());
+    const auto it = face_tet.find(key);
+    if (it == face_tet.end()) {
+      throw InputError(what + ": surface triangle " + std::to_string(k) +
+                       " is not a face of any tetrahedron");
+    }
+    const Vec3 a = d.mesh.nodes.col(d.mesh.surface(0, k)),
+               b = d.mesh.nodes.col(d.mesh.surface(1, k)),
+               c = d.mesh.nodes.col(d.mesh.surface(2, k));
+    const double area = 0.5 * (b - a).cross(c - a).norm();
+    const auto t = d.mesh.tets.col(it->second);
+    const double v = tet_volume(d.mesh.nodes.col(t[0]), d.mesh.nodes.col(t[1]),
+                                d.mesh.nodes.col(t[2]), d.mesh.nodes.col(t[3]));
+    s.faces.push_back({.body = bi,
                        .nodes = {key[0] + offset, key[1] + offset, key[2] + offset},
                        .area = area,
                        .height = 0.75 * v / area});
-    }
-    w.bodies.push_back(body);
-    offset += nn;
   }
-  w.surface_tets = Eigen::Map<const Eigen::Matrix4Xi>(st_nodes.data(), 4,
-                                                      static_cast<Eigen::Index>(st_body.size()));
-  w.surface_tet_body = std::move(st_body);
-  w.surface_tet_height = std::move(st_height);
+}
+
+// Penalty p (Pa): given, or α times the largest Young's modulus of the bodies that deform or
+// move; a fixed block only supplies the target (a stiff steel block must not shrink the step of
+// a softer rock particle). With no moving body, the largest of all.
+double contact_penalty(const WorldDef& def) {
+  if (def.contact.penalty > 0) return def.contact.penalty;
+  double young_max = 0;
+  for (const BodyDef& d : def.bodies) {
+    if (d.kind != BodyKind::fixed) young_max = std::max(young_max, d.material.young);
+  }
   if (young_max == 0) {
     for (const BodyDef& d : def.bodies) young_max = std::max(young_max, d.material.young);
   }
-  w.penalty = def.contact.penalty > 0 ? def.contact.penalty : def.contact.alpha * young_max;
-  w.friction = def.contact.friction;
+  return def.contact.alpha * young_max;
+}
 
-  // Skin: half the mean sub-tetrahedron height of the moving bodies' surface faces. Rebuilds
-  // happen every ~skin/(2 v dt) steps; the extra candidates cost one box test each per step.
+// Skin: half the mean sub-tetrahedron height of the moving bodies' surface faces. Rebuilds
+// happen every ~skin/(2 v dt) steps; the extra candidates cost one box test each per step.
+double contact_skin(const World& w, const std::vector<Face>& faces) {
   double hsum = 0;
   int hn = 0;
   for (const Face& f : faces) {
     if (w.bodies[f.body].kind != BodyKind::fixed) hsum += f.height, ++hn;
   }
-  w.skin = hn > 0 ? 0.5 * hsum / hn : 0;
+  return hn > 0 ? 0.5 * hsum / hn : 0;
+}
+
+void set_face_stiffness(World& w, const std::vector<Face>& faces) {
   w.face_nodes.resize(3, static_cast<Eigen::Index>(faces.size()));
   w.face_stiffness.resize(faces.size());
   std::vector<double> h_min(w.bodies.size(), 1e300);  // smallest height on any other body
@@ -398,6 +423,36 @@ World make_world(const WorldDef& def) {
     const double other = h_min[f.body] < 1e299 ? 1.0 / h_min[f.body] : 0.0;
     w.face_stiffness[k] = w.penalty * f.area * (1.0 / f.height + other);
   }
+}
+
+}  // namespace
+
+// Bodies and masses → surface tetrahedra and faces → penalty and face stiffness → skin → the
+// first candidate pairs and forces.
+World make_world(const WorldDef& def) {
+  World w;
+  w.gravity = def.gravity;
+  allocate_nodes(w, def);
+  SurfaceLists surface;
+  int offset = 0;
+  for (std::size_t bi = 0; bi < def.bodies.size(); ++bi) {
+    const BodyDef& d = def.bodies[bi];
+    const std::string what = "body \"" + d.name + "\"";
+    const int body = static_cast<int>(bi);
+    check_mesh(d, what);
+    w.bodies.push_back(add_body(w, d, body, offset, what));
+    add_surface_tets(surface, d, body, offset);
+    add_surface_faces(surface, d, body, offset, what);
+    offset += static_cast<int>(d.mesh.nodes.cols());
+  }
+  w.surface_tets = Eigen::Map<const Eigen::Matrix4Xi>(
+      surface.tet_nodes.data(), 4, static_cast<Eigen::Index>(surface.tet_body.size()));
+  w.surface_tet_body = std::move(surface.tet_body);
+  w.surface_tet_height = std::move(surface.tet_height);
+  w.penalty = contact_penalty(def);
+  w.friction = def.contact.friction;
+  w.skin = contact_skin(w, surface.faces);
+  set_face_stiffness(w, surface.faces);
 
   w.x_initial = w.x;
   rebuild_pairs(w);

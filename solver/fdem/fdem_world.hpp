@@ -90,6 +90,10 @@ struct World {
   // Nodes, structure of arrays. Fixed nodes have mass 0 and inverse mass 0.
   Eigen::Matrix3Xd x, v, f;    // m, m/s, N (contact + internal, without gravity)
   Eigen::Matrix3Xd x_initial;  // gravity potential is measured from here
+  // The contact part of f, node by node (N), kept only while keep_contact_force is set (frames
+  // for ParaView, run/vtk_series.hpp): a copy, so keeping it changes no result.
+  Eigen::Matrix3Xd f_contact;
+  bool keep_contact_force = false;
   std::vector<double> mass, inv_mass;
   std::vector<int> node_body;
 

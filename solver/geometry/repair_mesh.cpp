@@ -207,34 +207,42 @@ MeshCheck check_mesh(const SurfaceMesh& mesh, bool self_intersections) {
   return c;
 }
 
-SurfaceMesh repair_mesh(const PolygonSoup& soup, const std::string& name, MeshLog& log) {
-  auto fail = [&](const std::string& problem) -> void { throw InputError(name + ": " + problem); };
-  const Eigen::Matrix3Xd& p0 = soup.points;
+namespace {
 
-  // 1. Fan-triangulate polygons (OBJ, OFF and PLY may hold quads).
-  std::vector<std::array<int, 3>> tris;
-  long polygons = 0;
-  for (const auto& poly : soup.polygons) {
-    if (poly.size() > 3) ++polygons;
+using Triangles = std::vector<std::array<int, 3>>;
+
+[[noreturn]] void refuse(const std::string& name, const std::string& problem) {
+  throw InputError(name + ": " + problem);
+}
+
+// Step 1. Fan-triangulate polygons (OBJ, OFF and PLY may hold quads).
+Triangles fan_triangulate(const std::vector<std::vector<int>>& polygons, MeshLog& log) {
+  Triangles tris;
+  long split = 0;
+  for (const auto& poly : polygons) {
+    if (poly.size() > 3) ++split;
     for (std::size_t k = 1; k + 1 < poly.size(); ++k)
       tris.push_back({poly[0], poly[k], poly[k + 1]});
   }
-  if (polygons > 0)
-    log.repairs.push_back("fan-triangulated " + plural(polygons, "polygon", "polygons"));
+  if (split > 0) log.repairs.push_back("fan-triangulated " + plural(split, "polygon", "polygons"));
+  return tris;
+}
 
-  // 2. Merge vertices with identical coordinates (STL stores each triangle's corners apart).
-  std::vector<int> order(static_cast<std::size_t>(p0.cols()));
+// Step 2. Merge vertices with identical coordinates (STL stores each triangle's corners apart).
+// Returns how many were merged.
+long merge_duplicate_vertices(const Eigen::Matrix3Xd& p, Triangles& tris, MeshLog& log) {
+  std::vector<int> order(static_cast<std::size_t>(p.cols()));
   std::iota(order.begin(), order.end(), 0);
   auto less = [&](int a, int b) {
     for (int d = 0; d < 3; ++d)
-      if (p0(d, a) != p0(d, b)) return p0(d, a) < p0(d, b);
+      if (p(d, a) != p(d, b)) return p(d, a) < p(d, b);
     return a < b;
   };
   std::sort(order.begin(), order.end(), less);
   std::vector<int> same(order.size());
   long merged = 0;
   for (std::size_t k = 0; k < order.size(); ++k) {
-    if (k > 0 && p0.col(order[k]) == p0.col(order[k - 1])) {
+    if (k > 0 && p.col(order[k]) == p.col(order[k - 1])) {
       same[order[k]] = same[order[k - 1]];
       ++merged;
     } else {
@@ -245,75 +253,82 @@ SurfaceMesh repair_mesh(const PolygonSoup& soup, const std::string& name, MeshLo
     for (int& v : t) v = same[v];
   if (merged > 0)
     log.repairs.push_back("merged " + plural(merged, "duplicate vertex", "duplicate vertices"));
+  return merged;
+}
 
-  // 3. Faces with a repeated vertex have no area and no orientation; duplicate faces (same three
-  //    vertices) are doubled copies. Both go.
+// Step 3. Faces with a repeated vertex have no area and no orientation; duplicate faces (same
+// three vertices) are doubled copies. Both go.
+void drop_repeated_and_duplicate_faces(Triangles& tris, const std::string& name, MeshLog& log) {
   long repeated = 0, duplicates = 0;
-  {
-    std::vector<std::array<int, 3>> kept;
-    kept.reserve(tris.size());
-    std::vector<std::array<int, 3>> seen;
-    for (const auto& t : tris) {
-      if (t[0] == t[1] || t[1] == t[2] || t[0] == t[2]) {
-        ++repeated;
-        continue;
-      }
-      kept.push_back(t);
+  Triangles kept;
+  kept.reserve(tris.size());
+  for (const auto& t : tris) {
+    if (t[0] == t[1] || t[1] == t[2] || t[0] == t[2]) {
+      ++repeated;
+      continue;
     }
-    std::vector<std::pair<std::array<int, 3>, std::size_t>> sorted;
-    sorted.reserve(kept.size());
-    for (std::size_t i = 0; i < kept.size(); ++i) {
-      auto s = kept[i];
-      std::sort(s.begin(), s.end());
-      sorted.emplace_back(s, i);
-    }
-    std::sort(sorted.begin(), sorted.end());
-    std::vector<bool> drop(kept.size(), false);
-    for (std::size_t i = 1; i < sorted.size(); ++i)
-      if (sorted[i].first == sorted[i - 1].first) {
-        drop[sorted[i].second] = true;
-        ++duplicates;
-      }
-    tris.clear();
-    for (std::size_t i = 0; i < kept.size(); ++i)
-      if (!drop[i]) tris.push_back(kept[i]);
+    kept.push_back(t);
   }
+  std::vector<std::pair<std::array<int, 3>, std::size_t>> sorted;
+  sorted.reserve(kept.size());
+  for (std::size_t i = 0; i < kept.size(); ++i) {
+    auto s = kept[i];
+    std::sort(s.begin(), s.end());
+    sorted.emplace_back(s, i);
+  }
+  std::sort(sorted.begin(), sorted.end());
+  std::vector<bool> drop(kept.size(), false);
+  for (std::size_t i = 1; i < sorted.size(); ++i)
+    if (sorted[i].first == sorted[i - 1].first) {
+      drop[sorted[i].second] = true;
+      ++duplicates;
+    }
+  tris.clear();
+  for (std::size_t i = 0; i < kept.size(); ++i)
+    if (!drop[i]) tris.push_back(kept[i]);
   if (repeated > 0)
     log.repairs.push_back("removed " + plural(repeated, "degenerate face", "degenerate faces") +
                           " with a repeated vertex");
   if (duplicates > 0)
     log.repairs.push_back("removed " + plural(duplicates, "duplicate face", "duplicate faces"));
-  if (tris.empty()) fail("no faces left after removing degenerate faces");
+  if (tris.empty()) refuse(name, "no faces left after removing degenerate faces");
+}
 
+// The mesh of the referenced vertices; those dropped beyond the `merged` duplicates are logged.
+SurfaceMesh drop_unreferenced_vertices(const Eigen::Matrix3Xd& p, const Triangles& tris,
+                                       long merged, MeshLog& log) {
   long unreferenced = 0;
-  SurfaceMesh mesh = compact(p0, tris, &unreferenced);
+  SurfaceMesh mesh = compact(p, tris, &unreferenced);
   if (unreferenced - merged > 0)
     log.repairs.push_back(
         "removed " + plural(unreferenced - merged, "unreferenced vertex", "unreferenced vertices"));
+  return mesh;
+}
 
-  // 4. Topology: refuse what cannot be repaired without guessing the intended surface.
-  Topology t = analyse(mesh.faces, mesh.vertices.cols());
+// Step 4. Topology: refuse what cannot be repaired without guessing the intended surface.
+void refuse_unrepairable_topology(const Topology& t, const std::string& name) {
   if (t.nonmanifold_edges > 0) {
-    fail("non-manifold edge: " + plural(t.nonmanifold_edges, "edge is", "edges are") +
-         " shared by more than two faces" +
-         (t.border_edges > 0
-              ? " (and " + plural(t.border_edges, "border edge", "border edges") + ")"
-              : ""));
+    refuse(name, "non-manifold edge: " + plural(t.nonmanifold_edges, "edge is", "edges are") +
+                     " shared by more than two faces" +
+                     (t.border_edges > 0
+                          ? " (and " + plural(t.border_edges, "border edge", "border edges") + ")"
+                          : ""));
   }
   if (t.border_edges > 0) {
-    fail("open mesh: " + plural(t.border_edges, "border edge", "border edges") + " in " +
-         plural(t.border_loops, "hole", "holes"));
+    refuse(name, "open mesh: " + plural(t.border_edges, "border edge", "border edges") + " in " +
+                     plural(t.border_loops, "hole", "holes"));
   }
   if (t.nonmanifold_vertices > 0) {
-    fail("non-manifold vertex: at " + plural(t.nonmanifold_vertices, "vertex", "vertices") +
-         " separate sheets of faces touch");
+    refuse(name, "non-manifold vertex: at " + plural(t.nonmanifold_vertices, "vertex", "vertices") +
+                     " separate sheets of faces touch");
   }
+}
 
-  // 5. Orient every shell consistently: a breadth-first walk flips a face whose neighbour runs
-  //    the shared edge the same way. A conflict means a non-orientable surface.
+// Step 5. Orient every shell consistently: a breadth-first walk flips a face whose neighbour
+// runs the shared edge the same way. A conflict means a non-orientable surface.
+void orient_shells(SurfaceMesh& mesh, const Topology& t, const std::string& name, MeshLog& log) {
   const int nf = static_cast<int>(mesh.faces.cols());
   std::vector<int> flip(nf, -1);
-  long flipped = 0;
   for (int seed = 0; seed < nf; ++seed) {
     if (flip[seed] >= 0) continue;
     std::vector<int> members;
@@ -331,9 +346,9 @@ SurfaceMesh repair_mesh(const PolygonSoup& soup, const std::string& name, MeshLo
           flip[b] = want;
           queue.push_back(b);
         } else if (flip[b] != want) {
-          fail(
-              "non-orientable surface: a one-sided shell (like a Moebius strip) cannot be "
-              "oriented");
+          refuse(name,
+                 "non-orientable surface: a one-sided shell (like a Moebius strip) cannot be "
+                 "oriented");
         }
       }
     }
@@ -343,6 +358,7 @@ SurfaceMesh repair_mesh(const PolygonSoup& soup, const std::string& name, MeshLo
     if (2 * ones > static_cast<long>(members.size()))
       for (int m : members) flip[m] ^= 1;
   }
+  long flipped = 0;
   for (int i = 0; i < nf; ++i)
     if (flip[i] == 1) {
       std::swap(mesh.faces(1, i), mesh.faces(2, i));
@@ -351,8 +367,11 @@ SurfaceMesh repair_mesh(const PolygonSoup& soup, const std::string& name, MeshLo
   if (flipped > 0)
     log.repairs.push_back("reoriented " + plural(flipped, "face", "faces") +
                           " to match their neighbours");
+}
 
-  // 6. One shell: drop tiny ones (debris, inner bubbles), refuse a second particle.
+// Step 6. One shell: drop tiny ones (debris, inner bubbles), refuse a second particle.
+void keep_main_shell(SurfaceMesh& mesh, const Topology& t, const std::string& name, MeshLog& log) {
+  const int nf = static_cast<int>(mesh.faces.cols());
   const Eigen::Vector3d origin = mesh.vertices.rowwise().mean();
   std::vector<double> shell_volume(static_cast<std::size_t>(t.shells));
   std::vector<long> shell_faces(static_cast<std::size_t>(t.shells), 0);
@@ -364,78 +383,97 @@ SurfaceMesh repair_mesh(const PolygonSoup& soup, const std::string& name, MeshLo
                        [](double a, double b) { return std::abs(a) < std::abs(b); }) -
       shell_volume.begin());
   const double main_volume = std::abs(shell_volume[main_shell]);
-  if (t.shells > 1) {
-    long large = 0;
-    for (int s = 0; s < t.shells; ++s)
-      if (s != main_shell && std::abs(shell_volume[s]) >= kTinyShellFraction * main_volume) ++large;
-    if (large > 0) {
-      std::ostringstream m;
-      m << "several shells: " << t.shells << " separate closed surfaces, " << large
-        << " of them larger than " << 100 * kTinyShellFraction
-        << "% of the largest; split the file into one particle per file";
-      fail(m.str());
-    }
-    std::vector<std::array<int, 3>> kept;
-    for (int i = 0; i < nf; ++i)
-      if (t.shell[i] == main_shell)
-        kept.push_back({mesh.faces(0, i), mesh.faces(1, i), mesh.faces(2, i)});
-    for (int s = 0; s < t.shells; ++s) {
-      if (s == main_shell) continue;
-      std::ostringstream m;
-      m << "dropped a tiny shell of " << shell_faces[s] << " faces (volume "
-        << 100 * std::abs(shell_volume[s]) / main_volume << "% of the main shell)";
-      log.repairs.push_back(m.str());
-      log.warnings.push_back(m.str());
-    }
-    mesh = compact(mesh.vertices, kept, nullptr);
-    t = analyse(mesh.faces, mesh.vertices.cols());
+  long large = 0;
+  for (int s = 0; s < t.shells; ++s)
+    if (s != main_shell && std::abs(shell_volume[s]) >= kTinyShellFraction * main_volume) ++large;
+  if (large > 0) {
+    std::ostringstream m;
+    m << "several shells: " << t.shells << " separate closed surfaces, " << large
+      << " of them larger than " << 100 * kTinyShellFraction
+      << "% of the largest; split the file into one particle per file";
+    refuse(name, m.str());
   }
+  Triangles kept;
+  for (int i = 0; i < nf; ++i)
+    if (t.shell[i] == main_shell)
+      kept.push_back({mesh.faces(0, i), mesh.faces(1, i), mesh.faces(2, i)});
+  for (int s = 0; s < t.shells; ++s) {
+    if (s == main_shell) continue;
+    std::ostringstream m;
+    m << "dropped a tiny shell of " << shell_faces[s] << " faces (volume "
+      << 100 * std::abs(shell_volume[s]) / main_volume << "% of the main shell)";
+    log.repairs.push_back(m.str());
+    log.warnings.push_back(m.str());
+  }
+  mesh = compact(mesh.vertices, kept, nullptr);
+}
 
-  // 7. Outward: the divergence theorem gives a negative volume for an inward-wound surface.
+// Step 7. Outward: the divergence theorem gives a negative volume for an inward-wound surface.
+void orient_outward(SurfaceMesh& mesh, const std::string& name, MeshLog& log) {
   const double extent =
       (mesh.vertices.rowwise().maxCoeff() - mesh.vertices.rowwise().minCoeff()).maxCoeff();
-  double volume =
+  const double volume =
       signed_volume(mesh.vertices, mesh.faces, nullptr, 0, mesh.vertices.rowwise().mean());
   // Zero volume to round-off: |V| within 1e-12 of the bounding cube (a flat or collapsed shell).
   if (!(std::abs(volume) > 1e-12 * extent * extent * extent)) {
     std::ostringstream m;
     m << "zero volume (" << volume << " m^3 inside a " << extent
       << " m bounding box): a flat or collapsed surface";
-    fail(m.str());
+    refuse(name, m.str());
   }
   if (volume < 0) {
     mesh.faces.row(1).swap(mesh.faces.row(2));
     std::ostringstream m;
     m << "flipped the inward-wound mesh (signed volume was " << volume << " m^3)";
     log.repairs.push_back(m.str());
-    volume = -volume;
   }
+}
 
-  // 8. Zero-area faces with three distinct, collinear vertices (needles and caps): CGAL collapses
-  //    or flips them away, which keeps the surface closed; the result is checked again.
+// Step 8. Zero-area faces with three distinct, collinear vertices (needles and caps): CGAL
+// collapses or flips them away, which keeps the surface closed; the result is checked again.
+void collapse_degenerate_faces(SurfaceMesh& mesh, const std::string& name, MeshLog& log) {
   long degenerate = 0;
   for (Eigen::Index i = 0; i < mesh.faces.cols(); ++i)
     degenerate += collinear(mesh.vertices, mesh.faces, i);
-  if (degenerate > 0) {
-    CgalMesh cm = to_cgal(mesh);
-    const bool done = PMP::remove_degenerate_faces(cm);
-    cm.collect_garbage();
-    SurfaceMesh fixed = from_cgal(cm);
-    const MeshCheck after = check_mesh(fixed, false);
-    if (!done || !after.closed() || !after.manifold() || after.shells != 1 ||
-        after.misoriented_edges != 0 || after.degenerate_faces != 0 || after.volume <= 0) {
-      fail("degenerate faces: " + plural(degenerate, "face has", "faces have") +
-           " zero area (collinear vertices) and could not be collapsed safely");
-    }
-    log.repairs.push_back("removed " + plural(degenerate, "zero-area face", "zero-area faces") +
-                          " (collinear vertices) by edge collapse and flip");
-    mesh = std::move(fixed);
+  if (degenerate == 0) return;
+  CgalMesh cm = to_cgal(mesh);
+  const bool done = PMP::remove_degenerate_faces(cm);
+  cm.collect_garbage();
+  SurfaceMesh fixed = from_cgal(cm);
+  const MeshCheck after = check_mesh(fixed, false);
+  if (!done || !after.closed() || !after.manifold() || after.shells != 1 ||
+      after.misoriented_edges != 0 || after.degenerate_faces != 0 || after.volume <= 0) {
+    refuse(name, "degenerate faces: " + plural(degenerate, "face has", "faces have") +
+                     " zero area (collinear vertices) and could not be collapsed safely");
   }
+  log.repairs.push_back("removed " + plural(degenerate, "zero-area face", "zero-area faces") +
+                        " (collinear vertices) by edge collapse and flip");
+  mesh = std::move(fixed);
+}
 
-  // 9. No self-intersections: the tetrahedralization and the contact detection need a solid.
+// Step 9. No self-intersections: the tetrahedralization and the contact detection need a solid.
+void refuse_self_intersections(const SurfaceMesh& mesh, const std::string& name) {
   if (const long pairs = count_self_intersections(mesh); pairs > 0) {
-    fail("self-intersecting surface: " + plural(pairs, "pair", "pairs") + " of faces intersect");
+    refuse(name,
+           "self-intersecting surface: " + plural(pairs, "pair", "pairs") + " of faces intersect");
   }
+}
+
+}  // namespace
+
+// The repairs are safe ones (nothing guessed); what needs a guess is refused with its counts.
+SurfaceMesh repair_mesh(const PolygonSoup& soup, const std::string& name, MeshLog& log) {
+  Triangles tris = fan_triangulate(soup.polygons, log);
+  const long merged = merge_duplicate_vertices(soup.points, tris, log);
+  drop_repeated_and_duplicate_faces(tris, name, log);
+  SurfaceMesh mesh = drop_unreferenced_vertices(soup.points, tris, merged, log);
+  const Topology t = analyse(mesh.faces, mesh.vertices.cols());
+  refuse_unrepairable_topology(t, name);
+  orient_shells(mesh, t, name, log);
+  keep_main_shell(mesh, t, name, log);
+  orient_outward(mesh, name, log);
+  collapse_degenerate_faces(mesh, name, log);
+  refuse_self_intersections(mesh, name);
   return mesh;
 }
 

@@ -266,11 +266,12 @@ std::size_t JsonReader::require_array() const {
   return value_.size();
 }
 
-void JsonReader::only_keys(std::initializer_list<std::string_view> allowed) const {
+void JsonReader::only_keys_in(std::span<const std::string_view> allowed) const {
   require_object();
   for (const auto& [k, v] : value_.items()) {
     if (std::find(allowed.begin(), allowed.end(), k) != allowed.end()) continue;
-    const std::string near = closest_key(k, allowed);
+    const std::string near =
+        closest_key(k, std::vector<std::string_view>(allowed.begin(), allowed.end()));
     fail(k, near.empty() ? "unknown key" : "unknown key (did you mean \"" + near + "\"?)");
   }
 }

@@ -63,7 +63,10 @@ class JsonReader {
   JsonReader at(std::size_t index) const;        // array element
 
   // Rejects keys not listed, suggesting the closest allowed one.
-  void only_keys(std::initializer_list<std::string_view> allowed) const;
+  void only_keys(std::initializer_list<std::string_view> allowed) const {
+    only_keys_in(std::span(allowed.begin(), allowed.size()));
+  }
+  void only_keys_in(std::span<const std::string_view> allowed) const;  // a key table
   void require_object() const;
   std::size_t require_array() const;  // returns the length
 

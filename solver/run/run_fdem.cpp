@@ -19,6 +19,7 @@
 #include "fem/tet_elements.hpp"
 #include "run/summary.hpp"
 #include "run/time_loop.hpp"
+#include "run/vtk_series.hpp"
 #if ASPERITY_HAVE_GEOMETRY
 #include "geometry/mesh_pipeline.hpp"
 #endif
@@ -267,9 +268,25 @@ RunResult run_fdem(const scene::SceneDef& s, const RunOptions& options) {
               .partner = restitution_partner(built.record, free),
               .every = std::max(1, s.record.every)};
 
+  // ParaView frames: an observer of the loop (each body's tetrahedra in world node indices).
+  std::optional<FdemSeries> frames;
+  StepObserver observer;
+  if (options.vtk && options.vtk->every > 0) {
+    std::vector<Eigen::Matrix4Xi> tets;
+    for (std::size_t b = 0; b < w.bodies.size(); ++b) {
+      tets.push_back(built.def.bodies[b].mesh.tets.array() + w.bodies[b].node_begin);
+    }
+    frames.emplace(w, tets, *options.vtk);
+    observer = [&](long k, double force, bool last) { frames->after_step(w, k, force, last); };
+  }
+
   RunResult result;
   const std::uint64_t ticks0 = ticks();
-  const LoopOutcome loop = time_loop(m, s, options, step, result);
+  const LoopOutcome loop = time_loop(m, s, options, step, result, observer);
+  if (frames) {
+    frames->finish(w);
+    result.vtk = frames->stats();
+  }
   const double per_tick = seconds_per_tick(loop.wall_seconds, ticks() - ticks0);
   result.status = loop.status;
   result.message = loop.message;

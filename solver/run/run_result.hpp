@@ -8,6 +8,8 @@
 
 #include <nlohmann/json.hpp>
 
+#include "run/vtk_output.hpp"
+
 namespace asperity::run {
 
 struct ForceRow {
@@ -24,6 +26,8 @@ struct RunOptions {
   bool allow_unsafe_dt = false;
   bool keep_rows = true;  // fill force and energy rows (off for sweeps)
   bool progress = false;  // progress line on stderr for long runs
+  // ParaView frames (run/vtk_series.hpp); none unless set with every > 0.
+  std::optional<VtkOutput> vtk;
 };
 
 struct RunResult {
@@ -32,6 +36,7 @@ struct RunResult {
   nlohmann::ordered_json summary;
   std::vector<ForceRow> force;
   std::vector<EnergyRow> energy;
+  SeriesStats vtk;  // frames written (not in the summary: frames change no result)
 };
 
 }  // namespace asperity::run

@@ -4,6 +4,7 @@
 
 #include <cmath>
 #include <numbers>
+#include <optional>
 
 #include "core/error.hpp"
 #include "core/format.hpp"
@@ -13,6 +14,7 @@
 #include "run/rebound.hpp"
 #include "run/summary.hpp"
 #include "run/time_loop.hpp"
+#include "run/vtk_series.hpp"
 
 namespace asperity::run {
 namespace {
@@ -189,9 +191,21 @@ RunResult run_spheres(const scene::SceneDef& s, const RunOptions& options) {
   }
   m.partner = restitution_partner(s.record.body, free);
 
+  // ParaView frames: an observer of the loop.
+  std::optional<SphereSeries> frames;
+  StepObserver observer;
+  if (options.vtk && options.vtk->every > 0) {
+    frames.emplace(w, *options.vtk);
+    observer = [&](long k, double force, bool last) { frames->after_step(w, k, force, last); };
+  }
+
   RunResult result;
   const std::uint64_t ticks0 = ticks();
-  const LoopOutcome loop = time_loop(m, s, options, step, result);
+  const LoopOutcome loop = time_loop(m, s, options, step, result, observer);
+  if (frames) {
+    frames->finish(w);
+    result.vtk = frames->stats();
+  }
   const double per_tick = seconds_per_tick(loop.wall_seconds, ticks() - ticks0);
   result.status = loop.status;
   result.message = loop.message;

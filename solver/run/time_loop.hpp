@@ -9,7 +9,11 @@
 //   Vec3 relative_velocity()           recorded body's centre relative to its partner's
 //   EnergyBalance energy(); bool finite(); double time(); long check_every()
 //   int record                         the recorded body's index in contacts()
+// An observer (ParaView frames, run/vtk_series.hpp) is called after every completed step; it only
+// reads the model, so it changes no result.
 #pragma once
+
+#include <functional>
 
 #include "core/body_contacts.hpp"
 #include "core/clock.hpp"
@@ -22,6 +26,9 @@
 
 namespace asperity::run {
 
+// After step k: the recorded body's contact force magnitude (N), and whether the run ends there.
+using StepObserver = std::function<void(long k, double force, bool last)>;
+
 struct LoopOutcome {
   ImpactMeasures impact;
   Restitution restitution;
@@ -33,7 +40,8 @@ struct LoopOutcome {
 
 template <class Model>
 LoopOutcome time_loop(Model& m, const scene::SceneDef& s, const RunOptions& options,
-                      const StepChoice& step, RunResult& result) {
+                      const StepChoice& step, RunResult& result,
+                      const StepObserver& observer = {}) {
   LoopOutcome out;
   const auto wall0 = std::chrono::steady_clock::now();
   const double cpu0 = thread_cpu_seconds();
@@ -76,6 +84,7 @@ LoopOutcome time_loop(Model& m, const scene::SceneDef& s, const RunOptions& opti
       if (row_due) push_rows(e);
     }
     if (out.ended_by_separation && !row_due) push_rows(m.energy());
+    if (observer) observer(k, sample_force().norm(), k == step.steps || out.ended_by_separation);
     monitor.progress(k);
     if (out.ended_by_separation) break;
   }

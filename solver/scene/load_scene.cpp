@@ -7,6 +7,7 @@
 #include "io/json_file.hpp"
 #include "scene/scene.hpp"
 #include "scene/scene_json.hpp"
+#include "scene/scene_keys.hpp"
 
 namespace asperity::scene {
 namespace {
@@ -16,7 +17,7 @@ using io::JsonReader;
 constexpr double kSpeedOfLight = 299'792'458.0;  // m/s
 
 Material parse_material(const JsonReader& m, const std::string& name) {
-  m.only_keys({"density", "young", "poisson", "friction", "restitution"});
+  m.only_keys_in(keys::kMaterial);
   Material out;
   out.name = name;
   out.density = m.positive("density");
@@ -32,24 +33,24 @@ Shape parse_shape(const JsonReader& s) {
   s.require_object();
   const std::string type = s.string("type");
   if (type == "sphere") {
-    s.only_keys({"type", "radius"});
+    s.only_keys_in(keys::kSphere);
     return SphereShape{.radius = s.positive("radius")};
   }
   if (type == "plane") {
-    s.only_keys({"type", "point", "normal"});
+    s.only_keys_in(keys::kPlane);
     PlaneShape p{.point = s.vec3("point"), .normal = s.vec3("normal")};
     if (p.normal.norm() < 1e-12) s.fail("normal", "must be a non-zero vector");
     p.normal.normalize();
     return p;
   }
   if (type == "box") {
-    s.only_keys({"type", "min", "max"});
+    s.only_keys_in(keys::kBox);
     BoxShape b{.min = s.vec3("min"), .max = s.vec3("max")};
     if (!(b.max.array() > b.min.array()).all()) s.fail("max", "must exceed min in every axis");
     return b;
   }
   if (type == "mesh") {
-    s.only_keys({"type", "file", "faces", "scale"});
+    s.only_keys_in(keys::kMesh);
     MeshShape m;
     m.file = s.string("file");
     if (m.file.is_relative()) m.file = s.file().parent_path() / m.file;
@@ -64,7 +65,7 @@ Shape parse_shape(const JsonReader& s) {
 }
 
 ContactDef parse_contact(const JsonReader& c) {
-  c.only_keys({"law", "kn", "kt", "penalty", "penalty_alpha", "friction", "restitution"});
+  c.only_keys_in(keys::kContact);
   ContactDef out;
   const std::string law = c.string("law");
   std::vector<std::string_view> names;
@@ -115,8 +116,7 @@ SceneDef parse_scene(const io::Json& json, const std::filesystem::path& file,
            "this is a validation case (it has \"case\" and \"scene\"), not a scene; run it "
            "with asperity validate");
   }
-  r.only_keys({"name", "gravity", "duration", "dt", "dt_safety", "allow_unsafe_dt",
-               "unstable_energy_growth", "materials", "bodies", "contact", "record"});
+  r.only_keys_in(keys::kScene);
   SceneDef s;
   s.file = file;
   s.name = r.has("name") ? r.string("name") : file.stem().string();
@@ -152,8 +152,7 @@ SceneDef parse_scene(const io::Json& json, const std::filesystem::path& file,
   std::set<std::string> names;
   for (std::size_t i = 0; i < n; ++i) {
     const JsonReader b = bodies.at(i);
-    b.only_keys({"name", "material", "shape", "model", "position", "velocity", "angular_velocity",
-                 "fixed", "damping_ratio"});
+    b.only_keys_in(keys::kBody);
     BodyDef body;
     body.name = b.string("name");
     if (!names.insert(body.name).second)
@@ -215,9 +214,24 @@ SceneDef parse_scene(const io::Json& json, const std::filesystem::path& file,
     }
   }
 
+  if (r.has("output")) {
+    const JsonReader out = r.child("output");
+    out.only_keys_in(keys::kOutput);
+    if (out.has("vtk_every")) {
+      s.output.vtk_every = static_cast<int>(out.integer("vtk_every", 1, 1'000'000'000));
+    }
+    if (out.has("vtk_format")) {
+      const std::string f = out.string("vtk_format");
+      if (f != "base64" && f != "ascii") {
+        out.fail("vtk_format", "must be \"base64\" or \"ascii\" (got \"" + f + "\")");
+      }
+      s.output.vtk_ascii = f == "ascii";
+    }
+  }
+
   if (r.has("record")) {
     const JsonReader rec = r.child("record");
-    rec.only_keys({"force_on", "every", "end_after_separation"});
+    rec.only_keys_in(keys::kRecord);
     const std::string who = rec.string("force_on");
     s.record.body = -1;
     for (std::size_t i = 0; i < s.bodies.size(); ++i) {

@@ -90,6 +90,12 @@ struct RecordDef {
   std::optional<double> end_after_separation;
 };
 
+// What `asperity run` writes beside the contract's files.
+struct OutputDef {
+  int vtk_every = 0;       // steps between ParaView frames (DIR/vtk/); 0: none
+  bool vtk_ascii = false;  // ASCII arrays instead of appended base64
+};
+
 struct SceneDef {
   std::filesystem::path file;  // where it was read from (for messages)
   std::string name;
@@ -110,6 +116,7 @@ struct SceneDef {
   std::vector<BodyDef> bodies;
   ContactDef contact;
   RecordDef record;
+  OutputDef output;
 };
 
 // Reads and validates a scene file. Throws InputError naming file, key and problem.

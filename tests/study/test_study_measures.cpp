@@ -6,8 +6,8 @@
 
 #include <gtest/gtest.h>
 
+#include "study/curve_measures.hpp"
 #include "study/study_run.hpp"
-#include "study/study_tables.hpp"
 
 namespace asperity::study {
 namespace {

@@ -37,10 +37,10 @@ double parse_tolerance(const std::string& text, const std::string& key) {
   return v;
 }
 
-OJson recommend(const fs::path& scene_file, const fs::path& guidelines_file,
-                const RecommendOptions& o) {
-  const scene::SceneDef s = scene::load_scene(scene_file);
-  // The particle: the recorded body when it moves, else the first free body.
+namespace {
+
+// The particle: the recorded body when it moves, else the first free body.
+int advised_body(const scene::SceneDef& s, const fs::path& scene_file) {
   int body = s.record.body;
   if (body < 0 || s.bodies[body].fixed) {
     const auto it = std::find_if(s.bodies.begin(), s.bodies.end(),
@@ -49,36 +49,36 @@ OJson recommend(const fs::path& scene_file, const fs::path& guidelines_file,
       throw InputError(scene_file.string() + ": bodies: no free body (a particle) to advise on");
     body = static_cast<int>(it - s.bodies.begin());
   }
-  const scene::BodyDef& b = s.bodies[body];
-  double diameter = 0;
-  std::string shape;
+  return body;
+}
+
+struct Particle {
+  double diameter = 0;  // volume-equivalent, m
+  std::string shape;    // "sphere" or "mesh"
+};
+
+Particle particle_of(const scene::BodyDef& b, int body, const fs::path& scene_file) {
   if (const auto* sp = std::get_if<scene::SphereShape>(&b.shape)) {
-    diameter = 2 * sp->radius;
-    shape = "sphere";
-  } else if (const auto* m = std::get_if<scene::MeshShape>(&b.shape)) {
+    return {.diameter = 2 * sp->radius, .shape = "sphere"};
+  }
+  if (const auto* m = std::get_if<scene::MeshShape>(&b.shape)) {
     geometry::PipelineOptions po;
     po.read.scale = m->scale;
     po.tetrahedralize = false;
-    diameter = 2 * geometry::prepare_particle(m->file, po).source_props.equivalent_radius;
-    shape = "mesh";
-  } else {
-    throw InputError(scene_file.string() + ": bodies[" + std::to_string(body) +
-                     "]: a free plane or box is no particle");
+    return {.diameter = 2 * geometry::prepare_particle(m->file, po).source_props.equivalent_radius,
+            .shape = "mesh"};
   }
-  const double speed = b.velocity.norm();
+  throw InputError(scene_file.string() + ": bodies[" + std::to_string(body) +
+                   "]: a free plane or box is no particle");
+}
 
-  const io::Json g = io::read_json_file(guidelines_file);
-  const io::JsonReader gr(g, guidelines_file, "");
-  const io::JsonReader rows = gr.child("rows");
-  const std::size_t n = rows.require_array();
-  if (n == 0)
-    throw InputError(guidelines_file.string() + ": rows: empty (the study has no fem reference)");
-  const std::string placement = o.placement.empty() ? rows.at(0).string("placement") : o.placement;
-  // The largest tolerance of the table not above the one asked for (conservative).
+// The guideline row: the largest tolerance of the table not above the one asked for
+// (conservative), or nullptr; `applied` its tolerance.
+const io::Json* pick_row(const io::Json& g, const std::string& placement, const RecommendOptions& o,
+                         double& applied) {
   const io::Json* best = nullptr;
-  double applied = 0;
-  for (std::size_t i = 0; i < n; ++i) {
-    const io::Json& r = g["rows"][i];
+  applied = 0;
+  for (const io::Json& r : g["rows"]) {
     if (r.at("placement") != placement || r.at("metric") != o.metric ||
         r.at("statistic") != o.statistic)
       continue;
@@ -88,40 +88,73 @@ OJson recommend(const fs::path& scene_file, const fs::path& guidelines_file,
       best = &r;
     }
   }
-  OJson notes = OJson::array();
-  OJson rec;
+  return best;
+}
+
+// The recommended model and resolution: the row's, or the study's reference when no row meets
+// the tolerance.
+OJson recommendation(const io::Json* best, const io::Json& g, OJson& notes) {
   if (best) {
-    rec = {{"model", (*best)["model"]},
-           {"resolution", (*best)["resolution"]},
-           {"expected_error", (*best)["error"]},
-           {"cpu_seconds_median_in_study", (*best)["cpu_seconds_median"]},
-           {"is_reference", (*best)["is_reference"]}};
     if ((*best)["is_reference"].get<bool>()) {
       notes.push_back(
           "only the study's finest fem mesh met this tolerance: a finer mesh may be needed");
     }
-  } else {
-    const io::Json& ref = g["reference"];
-    rec = {{"model", ref["model"]},
-           {"resolution", ref["resolution"]},
-           {"expected_error", nullptr},
-           {"cpu_seconds_median_in_study", nullptr},
-           {"is_reference", true}};
-    notes.push_back(
-        "the tolerance is tighter than every guideline (the smallest is 2%): the study's "
-        "reference, and "
-        "a convergence check of your own");
+    return {{"model", (*best)["model"]},
+            {"resolution", (*best)["resolution"]},
+            {"expected_error", (*best)["error"]},
+            {"cpu_seconds_median_in_study", (*best)["cpu_seconds_median"]},
+            {"is_reference", (*best)["is_reference"]}};
   }
-  OJson change;
+  const io::Json& ref = g["reference"];
+  notes.push_back(
+      "the tolerance is tighter than every guideline (the smallest is 2%): the study's "
+      "reference, and "
+      "a convergence check of your own");
+  return {{"model", ref["model"]},
+          {"resolution", ref["resolution"]},
+          {"expected_error", nullptr},
+          {"cpu_seconds_median_in_study", nullptr},
+          {"is_reference", true}};
+}
+
+// The scene keys to change for the recommended model.
+OJson scene_change(const OJson& rec, const io::Json& g, double diameter) {
   const std::string model = rec["model"].get<std::string>();
   if (model == "sphere") {
-    change = {{"shape", {{"type", "sphere"}, {"radius", diameter / 2}}}, {"contact.law", "hertz"}};
-  } else {
-    change = {{"model", model}, {"shape.faces", rec["resolution"]}, {"contact.law", "potential"}};
-    // The guideline holds for the study's penalty (its peak forces depend on it, docs/study.md).
-    const io::Json alpha = g.value("penalty_alpha", io::Json());
-    if (alpha.is_number()) change["contact.penalty_alpha"] = alpha.get<double>();
+    return {{"shape", {{"type", "sphere"}, {"radius", diameter / 2}}}, {"contact.law", "hertz"}};
   }
+  OJson change = {
+      {"model", model}, {"shape.faces", rec["resolution"]}, {"contact.law", "potential"}};
+  // The guideline holds for the study's penalty (its peak forces depend on it, docs/study.md).
+  const io::Json alpha = g.value("penalty_alpha", io::Json());
+  if (alpha.is_number()) change["contact.penalty_alpha"] = alpha.get<double>();
+  return change;
+}
+
+}  // namespace
+
+OJson recommend(const fs::path& scene_file, const fs::path& guidelines_file,
+                const RecommendOptions& o) {
+  const scene::SceneDef s = scene::load_scene(scene_file);
+  const int body = advised_body(s, scene_file);
+  const scene::BodyDef& b = s.bodies[body];
+  const Particle particle = particle_of(b, body, scene_file);
+  const double diameter = particle.diameter;
+  const double speed = b.velocity.norm();
+
+  const io::Json g = io::read_json_file(guidelines_file);
+  const io::JsonReader gr(g, guidelines_file, "");
+  const io::JsonReader rows = gr.child("rows");
+  const std::size_t n = rows.require_array();
+  if (n == 0)
+    throw InputError(guidelines_file.string() + ": rows: empty (the study has no fem reference)");
+  const std::string placement = o.placement.empty() ? rows.at(0).string("placement") : o.placement;
+  double applied = 0;
+  const io::Json* best = pick_row(g, placement, o, applied);
+  OJson notes = OJson::array();
+  const OJson rec = recommendation(best, g, notes);
+  const std::string model = rec["model"].get<std::string>();
+  const OJson change = scene_change(rec, g, diameter);
   const io::Json range = g.value("particle_diameter_range", io::Json());
   const double study_speed = g.value("speed", 0.0);
   bool in_size = true, in_speed = true;
@@ -138,25 +171,27 @@ OJson recommend(const fs::path& scene_file, const fs::path& guidelines_file,
       notes.push_back(
           "the impact speed lies outside half to twice the study's: the guideline is extrapolated");
   }
-  if (shape == "sphere" && model != "sphere") {
+  if (particle.shape == "sphere" && model != "sphere") {
     notes.push_back(
         "the scene's particle is a sphere: the guideline is for irregular particles; mesh the real "
         "shape");
   }
-  return {
-      {"scene", scene_file.string()},
-      {"guidelines", guidelines_file.string()},
-      {"particle",
-       {{"body", b.name}, {"shape", shape}, {"equivalent_diameter", diameter}, {"speed", speed}}},
-      {"tolerance", o.tolerance},
-      {"applied_tolerance", best ? OJson(applied) : OJson()},
-      {"metric", o.metric},
-      {"statistic", o.statistic},
-      {"placement", placement},
-      {"recommendation", rec},
-      {"scene_change", change},
-      {"within_study_range", {{"size", in_size}, {"speed", in_speed}}},
-      {"notes", notes}};
+  return {{"scene", scene_file.string()},
+          {"guidelines", guidelines_file.string()},
+          {"particle",
+           {{"body", b.name},
+            {"shape", particle.shape},
+            {"equivalent_diameter", diameter},
+            {"speed", speed}}},
+          {"tolerance", o.tolerance},
+          {"applied_tolerance", best ? OJson(applied) : OJson()},
+          {"metric", o.metric},
+          {"statistic", o.statistic},
+          {"placement", placement},
+          {"recommendation", rec},
+          {"scene_change", change},
+          {"within_study_range", {{"size", in_size}, {"speed", in_speed}}},
+          {"notes", notes}};
 }
 
 }  // namespace asperity::study

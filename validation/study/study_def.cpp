@@ -227,3 +227,93 @@ StudyDef load_study(const fs::path& file) {
 }
 
 }  // namespace asperity::study
+
+namespace asperity::study {
+namespace {
+
+nlohmann::ordered_json material_json(const Material& m) {
+  return {
+      {"density", m.density}, {"young", m.young}, {"poisson", m.poisson}, {"friction", m.friction}};
+}
+
+template <class T>
+nlohmann::ordered_json optional_json(const std::optional<T>& v) {
+  return v ? nlohmann::ordered_json(*v) : nlohmann::ordered_json();
+}
+
+}  // namespace
+
+nlohmann::ordered_json definition_json(const StudyDef& def) {
+  using OJson = nlohmann::ordered_json;
+  OJson particles = OJson::array();
+  for (const ParticleSource& p : def.particles) {
+    OJson j = {{"name", p.name}};
+    if (p.file.empty()) {
+      j.update({{"seed", p.seed},
+                {"size", p.size},
+                {"elongation", p.elongation},
+                {"flatness", p.flatness},
+                {"angularity", p.angularity},
+                {"roughness", p.roughness},
+                {"faces", p.faces}});
+    } else {
+      j.update({{"file", p.file.filename().string()}, {"scale", p.scale}});
+    }
+    particles.push_back(j);
+  }
+  OJson models = OJson::array(), placements = OJson::array();
+  for (ModelKind m : def.models) models.push_back(model_name(m));
+  for (Placement p : def.placements) placements.push_back(placement_name(p));
+  return {{"name", def.name},
+          {"particles", particles},
+          {"particle_size", optional_json(def.particle_size)},
+          {"resolutions", def.resolutions},
+          {"models", models},
+          {"placements", placements},
+          {"speed", def.speed},
+          {"orientation",
+           def.random_orientation
+               ? OJson("random")
+               : OJson{def.orientation_deg.x(), def.orientation_deg.y(), def.orientation_deg.z()}},
+          {"gap", def.gap},
+          {"duration", def.duration ? OJson(*def.duration) : OJson("auto")},
+          {"end_after_separation",
+           def.end_after_separation ? OJson(*def.end_after_separation) : OJson("never")},
+          {"penalty_alpha", optional_json(def.penalty_alpha)},
+          {"gravity", def.gravity},
+          {"material", material_json(def.material)},
+          {"block_material", material_json(def.block_material)},
+          {"rows", def.rows}};
+}
+
+std::string first_difference(const nlohmann::json& a, const nlohmann::json& b,
+                             const std::string& path) {
+  const auto shown = [](const nlohmann::json& v) {
+    const std::string s = v.dump();
+    return s.size() <= 60 ? s : s.substr(0, 57) + "...";
+  };
+  const std::string key = path.empty() ? "the definition" : "\"" + path + "\"";
+  if (a.is_object() && b.is_object()) {
+    for (const auto& [k, v] : a.items()) {
+      const std::string sub = path.empty() ? k : path + "." + k;
+      if (!b.contains(k)) return "\"" + sub + "\" is " + shown(v) + " there, absent here";
+      if (std::string d = first_difference(v, b.at(k), sub); !d.empty()) return d;
+    }
+    for (const auto& [k, v] : b.items()) {
+      const std::string sub = path.empty() ? k : path + "." + k;
+      if (!a.contains(k)) return "\"" + sub + "\" is absent there, " + shown(v) + " here";
+    }
+    return "";
+  }
+  if (a.is_array() && b.is_array() && a.size() == b.size()) {
+    for (std::size_t i = 0; i < a.size(); ++i) {
+      if (std::string d = first_difference(a[i], b[i], path + "[" + std::to_string(i) + "]");
+          !d.empty())
+        return d;
+    }
+    return "";
+  }
+  return a == b ? "" : key + " is " + shown(a) + " there, " + shown(b) + " here";
+}
+
+}  // namespace asperity::study

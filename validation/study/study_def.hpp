@@ -7,6 +7,8 @@
 #include <string>
 #include <vector>
 
+#include <nlohmann/json.hpp>
+
 #include "core/material.hpp"
 #include "core/vec.hpp"
 
@@ -60,5 +62,14 @@ struct StudyDef {
 
 // Reads and validates STUDY.json; InputError "FILE: KEY: problem" for anything wrong.
 StudyDef load_study(const std::filesystem::path& file);
+
+// The resolved definition: every value that decides a case (not `jobs`, nor where the file
+// lies: a mesh file is named by its file name). A study folder keeps it as DIR/study.json.
+nlohmann::ordered_json definition_json(const StudyDef& def);
+
+// "" when `a` and `b` are equal, else where they first differ and how, e.g.
+// "\"resolutions\" is [100,250] there, [100,250,500] here" (a: there, b: here).
+std::string first_difference(const nlohmann::json& a, const nlohmann::json& b,
+                             const std::string& path = "");
 
 }  // namespace asperity::study

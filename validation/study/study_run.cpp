@@ -7,22 +7,21 @@
 #include <unistd.h>
 
 #include <algorithm>
-#include <atomic>
 #include <chrono>
 #include <cmath>
 #include <cstdio>
 #include <ctime>
 #include <fstream>
-#include <functional>
 #include <map>
-#include <mutex>
+#include <memory>
 #include <numbers>
+#include <optional>
 #include <sstream>
 #include <thread>
 
+#include "cluster/task_pool.hpp"
 #include "core/clock.hpp"
 #include "core/error.hpp"
-#include "core/interrupt.hpp"
 #include "fdem/fdem_world.hpp"
 #include "fdem/structured_mesh.hpp"
 #include "fdem/time_step.hpp"
@@ -120,18 +119,6 @@ SurfaceMesh make_source(const StudyDef& def, const ParticleSource& p, std::size_
   return m;
 }
 
-// Runs tasks 0..n-1 on `jobs` threads; `run(k)` must not throw.
-void parallel_for(int n, int jobs, const std::function<void(int)>& run) {
-  std::atomic<int> next{0};
-  auto worker = [&] {
-    for (int k = next++; k < n; k = next++) run(k);
-  };
-  std::vector<std::thread> pool;
-  for (int t = 1; t < std::min(jobs, n); ++t) pool.emplace_back(worker);
-  worker();
-  for (std::thread& t : pool) t.join();
-}
-
 std::string clock_text(double s) {
   char buf[32];
   if (s >= 3600) {
@@ -143,30 +130,34 @@ std::string clock_text(double s) {
   return buf;
 }
 
-// Progress on stderr: a line redrawn in place on a terminal, else one line every 10 s.
+// Progress on rank 0's stderr, across every rank: a line redrawn in place on a terminal, else one
+// line every 10 s. Fed by the task pool's reports, one at a time.
 class Progress {
  public:
-  Progress(bool quiet, std::string what, int total, double total_weight)
+  Progress(bool quiet, std::string what, int total, double total_weight, bool ranks)
       : quiet_(quiet),
         tty_(isatty(2) != 0),
+        ranks_(ranks),
         what_(std::move(what)),
         total_(total),
         total_weight_(total_weight) {}
-  // `kept`: done by an earlier run; it leaves the time-left estimate (its weight took no time).
-  void done(double weight, const std::string& last, bool failed, bool kept = false) {
-    std::lock_guard<std::mutex> lock(mutex_);
+  // A task of relative cost `weight` reported; `running`: tasks handed out and not yet reported.
+  // A task kept from an earlier run leaves the time-left estimate (its weight took no time).
+  void done(const cluster::TaskReport& r, double weight, int running) {
     ++count_;
-    failed_ += failed ? 1 : 0;
-    (kept ? total_weight_ -= weight : weight_ += weight);
+    failed_ += r.failed ? 1 : 0;
+    (r.skipped ? total_weight_ -= weight : weight_ += weight);
     if (quiet_) return;
     const double el = elapsed();
     if (!tty_ && el - last_print_ < 10 && count_ < total_) return;
     last_print_ = el;
     const double left = weight_ > 0 ? el * (total_weight_ - weight_) / weight_ : 0;
-    std::fprintf(stderr, "%s%s [%d/%d]%s  %s elapsed, ~%s left  (%s)%s", tty_ ? "\r\033[K" : "",
-                 what_.c_str(), count_, total_,
-                 failed_ > 0 ? (" " + std::to_string(failed_) + " failed").c_str() : "",
-                 clock_text(el).c_str(), clock_text(left).c_str(), last.c_str(), tty_ ? "" : "\n");
+    const std::string failed = failed_ > 0 ? ", " + std::to_string(failed_) + " failed" : "";
+    const std::string where = ranks_ ? ", rank " + std::to_string(r.rank) : "";
+    std::fprintf(stderr, "%s%s [%d/%d] %d running%s  %s elapsed, ~%s left  (%s%s)%s",
+                 tty_ ? "\r\033[K" : "", what_.c_str(), count_, total_, running, failed.c_str(),
+                 clock_text(el).c_str(), clock_text(left).c_str(), r.note.c_str(), where.c_str(),
+                 tty_ ? "" : "\n");
     if (tty_ && count_ == total_) std::fprintf(stderr, "\n");
   }
   double elapsed() const {
@@ -174,11 +165,10 @@ class Progress {
   }
 
  private:
-  bool quiet_, tty_;
+  bool quiet_, tty_, ranks_;
   std::string what_;
   int total_;
   double total_weight_;
-  std::mutex mutex_;
   int count_ = 0, failed_ = 0;
   double weight_ = 0, last_print_ = -1e9;
   std::chrono::steady_clock::time_point start_ = std::chrono::steady_clock::now();
@@ -355,139 +345,233 @@ std::vector<CaseKey> plan_cases(const StudyDef& def) {
   return out;
 }
 
-StudyOutcome run_study(const StudyDef& def, const fs::path& out, const StudyRunOptions& options) {
-  const auto wall0 = std::chrono::steady_clock::now();
-  const int jobs = options.jobs > 0 ? options.jobs
-                   : def.jobs > 0
-                       ? def.jobs
-                       : std::max(1, static_cast<int>(std::thread::hardware_concurrency()));
-  StudyOutcome outcome;
-  std::mutex mutex;
-  fs::create_directories(out);
-  // One study at a time per folder: a second one would write the same cases.
-  const fs::path lock_file = out / "study.lock";
-  int lock_fd = -1;
-  for (int attempt = 0; lock_fd < 0 && attempt < 3; ++attempt) {
-    lock_fd = ::open(lock_file.c_str(), O_CREAT | O_RDWR, 0644);
-    if (lock_fd < 0 || ::flock(lock_fd, LOCK_EX | LOCK_NB) != 0) {
-      if (lock_fd >= 0) ::close(lock_fd);
-      throw InputError(out.string() + ": another asperity study is running in this folder");
-    }
-    // A study that just finished removed the file we locked: take a fresh one.
-    struct stat held {
-    }, named{};
-    if (::fstat(lock_fd, &held) != 0 || ::stat(lock_file.c_str(), &named) != 0 ||
-        held.st_ino != named.st_ino) {
-      ::close(lock_fd);
-      lock_fd = -1;
+Shard parse_shard(const std::string& text) {
+  const auto fail = [&](const std::string& why) -> Shard {
+    throw InputError("--shard: " + why + " (got \"" + text +
+                     "\"; K/N runs the K-th of N shards, "
+                     "1 <= K <= N)");
+  };
+  const std::size_t slash = text.find('/');
+  if (slash == std::string::npos) return fail("must be K/N");
+  int k = 0, n = 0;
+  try {
+    std::size_t used_k = 0, used_n = 0;
+    k = std::stoi(text.substr(0, slash), &used_k);
+    n = std::stoi(text.substr(slash + 1), &used_n);
+    if (used_k != slash || used_n != text.size() - slash - 1) return fail("must be K/N");
+  } catch (const std::logic_error&) {
+    return fail("K and N must be whole numbers");
+  }
+  if (n < 1) return fail("N must be at least 1");
+  if (k < 1 || k > n) return fail("K must be from 1 to N");
+  return {.index = k, .count = n};
+}
+
+std::vector<std::size_t> shard_particles(const StudyDef& def, const Shard& shard) {
+  std::vector<std::size_t> out;
+  for (std::size_t i = 0; i < def.particles.size(); ++i) {
+    if (shard.count == 0 ||
+        static_cast<int>(i % static_cast<std::size_t>(shard.count)) == shard.index - 1) {
+      out.push_back(i);
     }
   }
-  if (lock_fd < 0) throw std::runtime_error(lock_file.string() + ": cannot take the lock");
-  // The lock goes with the study, however it ends (an exception, SIGINT/SIGTERM): removed while
-  // still held, so no second study takes the old file in between.
-  struct Unlock {
-    int fd;
-    fs::path file;
-    ~Unlock() {
-      ::unlink(file.c_str());
+  return out;
+}
+
+FolderLock::FolderLock(const fs::path& out, const Shard& shard) {
+  // A whole run excludes everything else; shards share the study lock and each holds its own.
+  const auto take = [this](const fs::path& file, int how, const std::string& who) {
+    for (int attempt = 0; attempt < 3; ++attempt) {
+      const int fd = ::open(file.c_str(), O_CREAT | O_RDWR, 0644);
+      if (fd < 0 || ::flock(fd, how | LOCK_NB) != 0) {
+        if (fd >= 0) ::close(fd);
+        throw InputError(file.parent_path().string() + ": " + who + " is running in this folder");
+      }
+      // A study that just ended removed the file we locked (see the destructor): take a new one.
+      struct stat held {};
+      struct stat named {};
+      if (::fstat(fd, &held) == 0 && ::stat(file.c_str(), &named) == 0 &&
+          held.st_ino == named.st_ino) {
+        fds_.push_back(fd);
+        files_.push_back(file);
+        return;
+      }
       ::close(fd);
     }
-  } unlock{lock_fd, lock_file};
-  const RemoveOnInterrupt unlock_on_interrupt(lock_file);
+    throw std::runtime_error(file.string() + ": cannot take the lock");
+  };
+  take(out / "study.lock", shard.count == 0 ? LOCK_EX : LOCK_SH, "another asperity study");
+  if (shard.count > 0) {
+    const std::string name = std::to_string(shard.index) + "-of-" + std::to_string(shard.count);
+    take(out / ("shard-" + name + ".lock"), LOCK_EX, "shard " + name);
+  }
+  // SIGINT/SIGTERM remove the locks this process alone holds (a shared study.lock stays).
+  for (std::size_t i = shard.count == 0 ? 0 : 1; i < files_.size(); ++i)
+    on_interrupt_.push_back(std::make_unique<RemoveOnInterrupt>(files_[i]));
+}
 
-  // 1. Sources (cheap, serial): each particle's surface, written for the record.
-  const std::size_t np = def.particles.size();
-  std::vector<SurfaceMesh> sources(np);
-  std::vector<std::string> tags(np);
-  for (std::size_t i = 0; i < np; ++i) {
-    sources[i] = make_source(def, def.particles[i], i);
-    tags[i] = source_tag(def, def.particles[i], i);
+FolderLock::~FolderLock() {
+  // However the study ends (an exception, exit 2 included), a lock no one else holds goes: an
+  // exclusive hold is taken first, so a shard still running keeps the shared study.lock.
+  for (std::size_t i = 0; i < fds_.size(); ++i) {
+    if (::flock(fds_[i], LOCK_EX | LOCK_NB) == 0) ::unlink(files_[i].c_str());
+    ::close(fds_[i]);
+  }
+}
+
+void adopt_folder(const StudyDef& def, const fs::path& out) {
+  const fs::path file = out / "study.json";
+  const io::Json mine = io::Json::parse(definition_json(def).dump());
+  if (fs::exists(file)) {
+    const io::Json theirs = io::read_json_file(file);
+    const std::string where = first_difference(theirs, mine);
+    if (!where.empty()) {
+      throw InputError(file.string() + ": " + where + " in " + def.file.string() +
+                       ": this folder holds another study definition's cases (use another --out, "
+                       "or remove the folder)");
+    }
+    return;
+  }
+  fs::create_directories(out);
+  io::write_atomically(file, definition_json(def).dump(1) + "\n");
+}
+
+namespace {
+
+int thread_count(const StudyDef& def, const StudyRunOptions& options) {
+  if (options.jobs > 0) return options.jobs;
+  if (def.jobs > 0) return def.jobs;
+  return std::max(1, static_cast<int>(std::thread::hardware_concurrency()));
+}
+
+// Phase 1, sources (cheap, every rank): each particle's surface, centred, scaled and rotated.
+std::vector<SurfaceMesh> make_sources(const StudyDef& def,
+                                      const std::vector<std::size_t>& particles) {
+  std::vector<SurfaceMesh> sources(def.particles.size());
+  for (std::size_t i : particles) sources[i] = make_source(def, def.particles[i], i);
+  return sources;
+}
+
+// Rank 0 writes the sources for the record.
+void write_sources(const StudyDef& def, const fs::path& out,
+                   const std::vector<std::size_t>& particles,
+                   const std::vector<SurfaceMesh>& sources) {
+  for (std::size_t i : particles) {
     const fs::path f = out / "particles" / (def.particles[i].name + ".off");
     fs::create_directories(f.parent_path());
     geometry::write_surface_mesh(f, sources[i]);
   }
+}
 
-  // 2. Meshes: every particle at every resolution (skipped when an earlier run made the same).
-  struct MeshTask {
-    std::size_t particle;
-    long faces;
-  };
-  std::vector<MeshTask> mesh_tasks;
+struct MeshTask {
+  std::size_t particle;
+  long faces;
+};
+struct Meshes {
+  std::vector<MeshTask> tasks;
+  std::vector<std::string> errors;  // per task; empty: meshed (now or by an earlier run)
+};
+
+// One mesh: the source simplified to `faces` triangles and tetrahedralized, with the study's
+// placement data in mesh.json; kept when an earlier run made it from the same source.
+cluster::TaskReport make_mesh(const StudyDef& def, const fs::path& out, const MeshTask& t,
+                              const SurfaceMesh& source) {
+  const ParticleSource& p = def.particles[t.particle];
+  const std::string tag = source_tag(def, p, t.particle);
+  const std::string label = p.name + " " + std::to_string(t.faces);
+  const fs::path dir = mesh_dir(out, p.name, t.faces);
+  const double cpu0 = thread_cpu_seconds();
+  try {
+    const fs::path report = dir / "mesh.json";
+    if (fs::exists(report)) {
+      const io::Json j = io::read_json_file(report);
+      if (j.value("study_source", "") == tag && j.contains("dt_estimate_rigid")) {
+        return {.skipped = true, .note = label + " (kept)"};
+      }
+    }
+    geometry::PipelineOptions o;
+    o.faces = t.faces;
+    o.tetrahedralize = true;
+    const geometry::PreparedParticle prepared = geometry::prepare_particle(source, p.name, o);
+    fs::create_directories(dir);
+    fs::remove(report);
+    geometry::write_surface_mesh(dir / "surface.off", prepared.surface);
+    nlohmann::json j = geometry::mesh_report(prepared);
+    j["study_source"] = tag;
+    j["centroid_height"] =
+        prepared.props.centroid.z() - prepared.surface.vertices.row(2).minCoeff();
+    j["dt_estimate_fem"] = estimated_dt(prepared.tets, def, fdem::BodyKind::deformable,
+                                        prepared.props.equivalent_radius);
+    j["dt_estimate_rigid"] =
+        estimated_dt(prepared.tets, def, fdem::BodyKind::rigid, prepared.props.equivalent_radius);
+    j["mesh_cpu_seconds"] = thread_cpu_seconds() - cpu0;
+    io::write_atomically(report, j.dump(1) + "\n");
+    return {.note = label + " triangles"};
+  } catch (const std::exception& e) {
+    return {.failed = true, .note = label + " FAILED", .payload = e.what()};
+  }
+}
+
+// Phase 2, meshes: every particle at every resolution, over every rank's threads.
+Meshes mesh_particles(const StudyDef& def, const fs::path& out,
+                      const std::vector<std::size_t>& particles,
+                      const std::vector<SurfaceMesh>& sources, int jobs, cluster::World& world,
+                      bool quiet, StudyOutcome& outcome) {
+  Meshes m;
   // The sphere alone needs only the reference mesh (its volume).
   const bool polyhedra = std::any_of(def.models.begin(), def.models.end(),
-                                     [](ModelKind m) { return m != ModelKind::sphere; });
-  for (std::size_t i = 0; i < np; ++i) {
+                                     [](ModelKind k) { return k != ModelKind::sphere; });
+  for (std::size_t i : particles) {
     for (long n : def.resolutions) {
-      if (polyhedra || n == def.reference) mesh_tasks.push_back({i, n});
+      if (polyhedra || n == def.reference) m.tasks.push_back({i, n});
     }
   }
-  std::vector<std::string> mesh_errors(mesh_tasks.size());
-  {
-    Progress progress(options.quiet, "meshes", static_cast<int>(mesh_tasks.size()),
-                      static_cast<double>(mesh_tasks.size()));
-    parallel_for(static_cast<int>(mesh_tasks.size()), jobs, [&](int k) {
-      const MeshTask& t = mesh_tasks[k];
-      const ParticleSource& p = def.particles[t.particle];
-      const fs::path dir = mesh_dir(out, p.name, t.faces);
-      const double cpu0 = thread_cpu_seconds();
-      try {
-        const fs::path report = dir / "mesh.json";
-        if (fs::exists(report)) {
-          const io::Json j = io::read_json_file(report);
-          if (j.value("study_source", "") == tags[t.particle] && j.contains("dt_estimate_rigid")) {
-            progress.done(1, p.name + " " + std::to_string(t.faces) + " (kept)", false, true);
-            return;
-          }
-        }
-        geometry::PipelineOptions o;
-        o.faces = t.faces;
-        o.tetrahedralize = true;
-        const geometry::PreparedParticle prepared =
-            geometry::prepare_particle(sources[t.particle], p.name, o);
-        fs::create_directories(dir);
-        fs::remove(report);
-        geometry::write_surface_mesh(dir / "surface.off", prepared.surface);
-        nlohmann::json j = geometry::mesh_report(prepared);
-        j["study_source"] = tags[t.particle];
-        j["centroid_height"] =
-            prepared.props.centroid.z() - prepared.surface.vertices.row(2).minCoeff();
-        j["dt_estimate_fem"] = estimated_dt(prepared.tets, def, fdem::BodyKind::deformable,
-                                            prepared.props.equivalent_radius);
-        j["dt_estimate_rigid"] = estimated_dt(prepared.tets, def, fdem::BodyKind::rigid,
-                                              prepared.props.equivalent_radius);
-        j["mesh_cpu_seconds"] = thread_cpu_seconds() - cpu0;
-        io::write_atomically(report, j.dump(1) + "\n");
-        progress.done(1, p.name + " " + std::to_string(t.faces) + " triangles", false);
-      } catch (const std::exception& e) {
-        mesh_errors[k] = e.what();
-        progress.done(1, p.name + " " + std::to_string(t.faces) + " FAILED", true);
-      }
-      std::lock_guard<std::mutex> lock(mutex);
-      outcome.cpu_seconds += thread_cpu_seconds() - cpu0;
-    });
+  const int n = static_cast<int>(m.tasks.size());
+  // The finest meshes first: TetGen's cost grows with the triangle count.
+  std::vector<int> order(m.tasks.size());
+  for (int k = 0; k < n; ++k) order[static_cast<std::size_t>(k)] = k;
+  std::stable_sort(order.begin(), order.end(), [&](int a, int b) {
+    return m.tasks[static_cast<std::size_t>(a)].faces > m.tasks[static_cast<std::size_t>(b)].faces;
+  });
+  Progress progress(quiet, "meshes", n, n, world.size() > 1);
+  const std::vector<cluster::TaskReport> reports = cluster::run_tasks(
+      world, n, order, jobs,
+      [&](int k) {
+        const MeshTask& t = m.tasks[static_cast<std::size_t>(k)];
+        return make_mesh(def, out, t, sources[t.particle]);
+      },
+      [&](const cluster::TaskReport& r, int running) { progress.done(r, 1, running); });
+  for (const cluster::TaskReport& r : reports) {
+    m.errors.push_back(r.failed ? r.payload : "");
+    outcome.cpu_seconds += r.cpu_seconds;
   }
+  return m;
+}
 
-  // 3. Per particle: placement heights, steps and the duration every case of it runs.
+// Phase 3, plans (every rank, from the meshes' mesh.json): per particle, the placement heights,
+// the steps and the duration every case of it runs.
+std::map<std::string, ParticlePlan> plan_particles(const StudyDef& def, const fs::path& out,
+                                                   const Meshes& meshes,
+                                                   const std::vector<CaseKey>& cases) {
   std::map<std::string, ParticlePlan> plans;
   const double e_star = effective_young(def.material, def.block_material);
-  for (std::size_t k = 0; k < mesh_tasks.size(); ++k) {
-    ParticlePlan& pp = plans[def.particles[mesh_tasks[k].particle].name];
-    if (!mesh_errors[k].empty()) {
-      pp.mesh_error = std::to_string(mesh_tasks[k].faces) + " triangles: " + mesh_errors[k];
+  for (std::size_t k = 0; k < meshes.tasks.size(); ++k) {
+    const MeshTask& t = meshes.tasks[k];
+    ParticlePlan& pp = plans[def.particles[t.particle].name];
+    if (!meshes.errors[k].empty()) {
+      pp.mesh_error = std::to_string(t.faces) + " triangles: " + meshes.errors[k];
       continue;
     }
-    const io::Json j = io::read_json_file(
-        mesh_dir(out, def.particles[mesh_tasks[k].particle].name, mesh_tasks[k].faces) /
-        "mesh.json");
-    pp.centroid_height[mesh_tasks[k].faces] = j.at("centroid_height").get<double>();
-    pp.dt_fem[mesh_tasks[k].faces] = j.at("dt_estimate_fem").get<double>();
-    pp.dt_rigid[mesh_tasks[k].faces] = j.at("dt_estimate_rigid").get<double>();
-    if (mesh_tasks[k].faces == def.reference) {
+    const io::Json j =
+        io::read_json_file(mesh_dir(out, def.particles[t.particle].name, t.faces) / "mesh.json");
+    pp.centroid_height[t.faces] = j.at("centroid_height").get<double>();
+    pp.dt_fem[t.faces] = j.at("dt_estimate_fem").get<double>();
+    pp.dt_rigid[t.faces] = j.at("dt_estimate_rigid").get<double>();
+    if (t.faces == def.reference) {
       pp.radius = j.at("equivalent_radius").get<double>();
       pp.mass = def.material.density * j.at("volume").get<double>();
     }
   }
-  const std::vector<CaseKey> cases = plan_cases(def);
   for (auto& [name, pp] : plans) {
     if (!pp.mesh_error.empty()) continue;
     // "auto": the latest first contact of any of the particle's cases (its largest starting gap
@@ -503,84 +587,121 @@ StudyOutcome run_study(const StudyDef& def, const fs::path& out, const StudyRunO
     }
     pp.duration = def.duration ? *def.duration : max_gap / def.speed + 1.5 * pp.contact_time;
   }
+  return plans;
+}
 
-  // 4. Cases, longest first.
+// One case: its scene.json, the run's outputs, and case.json last (the done marker); kept when
+// an earlier run finished the same scene; failed.json when it fails.
+cluster::TaskReport run_case(const StudyDef& def, const fs::path& out, const ParticlePlan& pp,
+                             const CaseKey& c) {
+  const fs::path dir = out / "cases" / c.particle / c.dir_name();
+  const std::string label = c.particle + " " + c.dir_name();
+  try {
+    fs::create_directories(dir);
+    if (!pp.mesh_error.empty()) throw std::runtime_error("meshing failed at " + pp.mesh_error);
+    const std::string scene_text = case_scene(def, pp, c).dump(1) + "\n";
+    if (fs::exists(dir / "case.json") && read_text(dir / "scene.json") == scene_text) {
+      return {.skipped = true, .note = label + " (done before)"};
+    }
+    // Outputs of an earlier, different case go first: only this run's may sit beside the new
+    // scene.json.
+    for (const char* f : {"case.json", "failed.json", "summary.json", "force.csv", "energy.csv"})
+      fs::remove(dir / f);
+    io::write_atomically(dir / "scene.json", scene_text);
+    const scene::SceneDef scene = scene::load_scene(dir / "scene.json");
+    const double cpu0 = thread_cpu_seconds();
+    run::RunResult result = run::run_scene(scene, run::RunOptions{});
+    const double cpu = thread_cpu_seconds() - cpu0;
+    thin_rows(result, def.rows);
+    // The case's CPU on this worker thread (the run's own cpu_seconds counts the time loop only).
+    result.summary["cpu_seconds_thread"] = cpu;
+    run::write_outputs(result, dir);
+    OJson record = {{"particle", c.particle},
+                    {"model", model_name(c.model)},
+                    {"resolution", c.model == ModelKind::sphere ? OJson() : OJson(c.resolution)},
+                    {"placement", placement_name(c.placement)},
+                    {"status", result.status},
+                    {"start_gap", start_height(def, pp, c).second},
+                    {"duration", pp.duration},
+                    {"hertz_contact_time", pp.contact_time},
+                    {"cpu_seconds", cpu}};
+    io::write_atomically(dir / "case.json", record.dump(1) + "\n");
+    char buf[64];
+    std::snprintf(buf, sizeof buf, " %.2f s", cpu);
+    return {.note = label + buf};
+  } catch (const std::exception& e) {
+    try {
+      io::write_atomically(
+          dir / "failed.json",
+          OJson{{"particle", c.particle}, {"case", c.dir_name()}, {"message", e.what()}}.dump(1) +
+              "\n");
+    } catch (const std::exception&) {
+      // The folder itself cannot be written: the report still counts the failure.
+    }
+    return {.failed = true, .note = label + " FAILED", .payload = e.what()};
+  }
+}
+
+// Phase 4, cases: the most expensive first, over every rank's threads.
+void run_cases(const StudyDef& def, const fs::path& out,
+               const std::map<std::string, ParticlePlan>& plans, const std::vector<CaseKey>& cases,
+               int jobs, cluster::World& world, bool quiet, StudyOutcome& outcome) {
   std::vector<int> order(cases.size());
   for (std::size_t k = 0; k < cases.size(); ++k) order[k] = static_cast<int>(k);
-  std::stable_sort(order.begin(), order.end(),
-                   [&](int a, int b) { return case_weight(cases[a]) > case_weight(cases[b]); });
+  const auto weight = [&](int k) { return case_weight(cases[static_cast<std::size_t>(k)]); };
+  std::stable_sort(order.begin(), order.end(), [&](int a, int b) { return weight(a) > weight(b); });
   double total_weight = 0;
   for (const CaseKey& c : cases) total_weight += case_weight(c);
   outcome.cases = static_cast<int>(cases.size());
-  Progress progress(options.quiet, "cases", outcome.cases, total_weight);
-  parallel_for(static_cast<int>(order.size()), jobs, [&](int k) {
-    const CaseKey& c = cases[order[k]];
-    const ParticlePlan& pp = plans.at(c.particle);
-    const fs::path dir = out / "cases" / c.particle / c.dir_name();
-    const std::string label = c.particle + " " + c.dir_name();
-    const double cpu0 = thread_cpu_seconds();
-    bool failed = false, skipped = false;
-    try {
-      fs::create_directories(dir);
-      if (!pp.mesh_error.empty()) throw std::runtime_error("meshing failed at " + pp.mesh_error);
-      const std::string scene_text = case_scene(def, pp, c).dump(1) + "\n";
-      if (fs::exists(dir / "case.json") && read_text(dir / "scene.json") == scene_text) {
-        skipped = true;
-      } else {
-        // Outputs of an earlier, different case go first: only this run's may sit beside the
-        // new scene.json.
-        for (const char* f :
-             {"case.json", "failed.json", "summary.json", "force.csv", "energy.csv"})
-          fs::remove(dir / f);
-        io::write_atomically(dir / "scene.json", scene_text);
-        const scene::SceneDef scene = scene::load_scene(dir / "scene.json");
-        const double run_cpu0 = thread_cpu_seconds();
-        run::RunResult result = run::run_scene(scene, run::RunOptions{});
-        const double cpu = thread_cpu_seconds() - run_cpu0;
-        thin_rows(result, def.rows);
-        // The case's CPU on this worker thread (the run's own cpu_seconds counts the time loop
-        // only).
-        result.summary["cpu_seconds_thread"] = cpu;
-        run::write_outputs(result, dir);
-        OJson record = {
-            {"particle", c.particle},
-            {"model", model_name(c.model)},
-            {"resolution", c.model == ModelKind::sphere ? OJson() : OJson(c.resolution)},
-            {"placement", placement_name(c.placement)},
-            {"status", result.status},
-            {"start_gap", start_height(def, pp, c).second},
-            {"duration", pp.duration},
-            {"hertz_contact_time", pp.contact_time},
-            {"cpu_seconds", cpu}};
-        io::write_atomically(dir / "case.json", record.dump(1) + "\n");
-      }
-    } catch (const std::exception& e) {
-      failed = true;
-      try {
-        io::write_atomically(
-            dir / "failed.json",
-            OJson{{"particle", c.particle}, {"case", c.dir_name()}, {"message", e.what()}}.dump(1) +
-                "\n");
-      } catch (const std::exception&) {
-        // The folder itself cannot be written: the count below still reports the failure.
-      }
-    }
-    const double cpu = thread_cpu_seconds() - cpu0;
-    {
-      std::lock_guard<std::mutex> lock(mutex);
-      outcome.failed += failed ? 1 : 0;
-      outcome.skipped += skipped ? 1 : 0;
-      outcome.ran += (!failed && !skipped) ? 1 : 0;
-      outcome.cpu_seconds += cpu;
-    }
-    char buf[64];
-    std::snprintf(buf, sizeof buf, " %.2f s", cpu);
-    progress.done(case_weight(c),
-                  label + (failed    ? " FAILED"
-                           : skipped ? " (done before)"
-                                     : buf),
-                  failed, skipped);
+  Progress progress(quiet, "cases", outcome.cases, total_weight, world.size() > 1);
+  cluster::PoolStats stats;
+  const std::vector<cluster::TaskReport> reports = cluster::run_tasks(
+      world, outcome.cases, order, jobs,
+      [&](int k) {
+        const CaseKey& c = cases[static_cast<std::size_t>(k)];
+        return run_case(def, out, plans.at(c.particle), c);
+      },
+      [&](const cluster::TaskReport& r, int running) { progress.done(r, weight(r.task), running); },
+      &stats);
+  for (const cluster::TaskReport& r : reports) {
+    outcome.failed += r.failed ? 1 : 0;
+    outcome.skipped += r.skipped ? 1 : 0;
+    outcome.ran += !r.failed && !r.skipped ? 1 : 0;
+    outcome.cpu_seconds += r.cpu_seconds;
+  }
+  outcome.workers = stats.workers;
+  outcome.idle_fraction = stats.idle_fraction;
+  outcome.drain_seconds = stats.drain_seconds;
+}
+
+}  // namespace
+
+StudyOutcome run_study(const StudyDef& def, const fs::path& out, const StudyRunOptions& options) {
+  const auto wall0 = std::chrono::steady_clock::now();
+  std::optional<cluster::World> own_world;
+  cluster::World& world = options.world ? *options.world : own_world.emplace();
+  const int jobs = thread_count(def, options);
+  const std::vector<std::size_t> particles = shard_particles(def, options.shard);
+  const std::vector<SurfaceMesh> sources = make_sources(def, particles);
+  std::optional<FolderLock> lock;
+  world.on_root([&] {
+    fs::create_directories(out);
+    lock.emplace(out, options.shard);
+    adopt_folder(def, out);
+    write_sources(def, out, particles, sources);
   });
+  StudyOutcome outcome;
+  outcome.ranks = world.size();
+  const Meshes meshes =
+      mesh_particles(def, out, particles, sources, jobs, world, options.quiet, outcome);
+  std::vector<CaseKey> cases;
+  for (const CaseKey& c : plan_cases(def)) {
+    for (std::size_t i : particles) {
+      if (def.particles[i].name == c.particle) cases.push_back(c);
+    }
+  }
+  const std::map<std::string, ParticlePlan> plans = plan_particles(def, out, meshes, cases);
+  run_cases(def, out, plans, cases, jobs, world, options.quiet, outcome);
   outcome.wall_seconds =
       std::chrono::duration<double>(std::chrono::steady_clock::now() - wall0).count();
   return outcome;

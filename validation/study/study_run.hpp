@@ -2,7 +2,8 @@
 // scene run to its end, in a pool of worker threads, resumable and failure-tolerant.
 //
 // Layout of the study folder DIR (docs/study.md):
-//   DIR/study.json                      the resolved study definition
+//   DIR/study.json                      the resolved study definition, written by the first run;
+//                                        a run of another definition is refused (adopt_folder)
 //   DIR/particles/P.off                 each particle's source surface (scaled and rotated)
 //   DIR/meshes/P/N/surface.off          P simplified to exactly N triangles; mesh.json beside it
 //                                        (geometry::mesh_report plus the study's placement data)
@@ -14,23 +15,62 @@
 #pragma once
 
 #include <filesystem>
+#include <memory>
 #include <string>
 #include <vector>
 
+#include "cluster/world.hpp"
+#include "core/interrupt.hpp"
 #include "study/study_def.hpp"
 
 namespace asperity::study {
 
+// Shard K of N (`--shard K/N`, 1 <= K <= N): the particles whose place in the study is K−1
+// modulo N, their meshes and their cases. Shards share no file, so a job array may run them side
+// by side into one folder; count 0: the whole study.
+struct Shard {
+  int index = 0, count = 0;
+};
+// "K/N" → Shard; InputError "--shard: problem (got ...)" otherwise.
+Shard parse_shard(const std::string& text);
+// Indices (into def.particles) of the shard's particles.
+std::vector<std::size_t> shard_particles(const StudyDef& def, const Shard& shard);
+
 struct StudyRunOptions {
-  int jobs = 0;        // worker threads; 0: the study's "jobs", else every core
+  int jobs = 0;        // worker threads per rank; 0: the study's "jobs", else every core
   bool quiet = false;  // no progress line
+  Shard shard;
+  cluster::World* world = nullptr;  // the ranks to run on; nullptr: joins the launch itself
 };
 
 struct StudyOutcome {
   int cases = 0, ran = 0, skipped = 0, failed = 0;
   double wall_seconds = 0;
   double cpu_seconds = 0;  // summed thread CPU of the cases run now (meshing included)
+  // The cases phase on rank 0 (cluster::PoolStats): ranks, workers over all ranks, the share of
+  // worker time left idle, and how long the end ran with idle workers.
+  int ranks = 1, workers = 0;
+  double idle_fraction = 0, drain_seconds = 0;
 };
+
+// One study at a time per folder (flock on DIR/study.lock, held while it lives): a whole run
+// excludes any other; shards of a study may run side by side (InputError when taken).
+class FolderLock {
+ public:
+  FolderLock(const std::filesystem::path& out, const Shard& shard);
+  ~FolderLock();
+  FolderLock(const FolderLock&) = delete;
+  FolderLock& operator=(const FolderLock&) = delete;
+
+ private:
+  std::vector<int> fds_;
+  std::vector<std::filesystem::path> files_;
+  std::vector<std::unique_ptr<RemoveOnInterrupt>> on_interrupt_;
+};
+
+// Makes DIR the folder of this study definition: writes DIR/study.json on first use; InputError
+// naming the first key that differs when DIR holds another definition's cases.
+void adopt_folder(const StudyDef& def, const std::filesystem::path& out);
 
 // One case of the study, as the runner plans it.
 struct CaseKey {
@@ -44,9 +84,11 @@ struct CaseKey {
 // Every case of the study, in a fixed order (particle, model, resolution, placement).
 std::vector<CaseKey> plan_cases(const StudyDef& def);
 
-// Runs every case not already done. Throws InputError for a particle that cannot be read or
-// meshed at every resolution (nothing is run then); a case that fails is recorded and the rest
-// go on.
+// Runs every case of the shard not already done, on every rank of `options.world` with
+// `jobs` threads each, the most expensive first, handed out one at a time (docs/cluster.md).
+// Throws InputError for a particle that cannot be read, a folder of another study or a folder in
+// use; a mesh or case that fails is recorded and the rest go on. The phases: sources (every
+// rank), folder adopted and sources written (rank 0), meshes, plans (every rank), cases.
 StudyOutcome run_study(const StudyDef& def, const std::filesystem::path& out,
                        const StudyRunOptions& options);
 

@@ -4,8 +4,6 @@
 #pragma once
 
 #include <filesystem>
-#include <string>
-#include <vector>
 
 #include <nlohmann/json.hpp>
 
@@ -13,34 +11,6 @@
 #include "study/study_run.hpp"
 
 namespace asperity::study {
-
-// Shape measures of a force–time curve f(t) ≥ 0 and its comparison with a reference curve.
-struct CurveShape {
-  double mean_time = 0;  // ∫ t f dt / ∫ f dt, s
-  double spread = 0;     // standard deviation of t under f, s
-  double skewness = 0;   // third standardized moment of t under f (0 for a symmetric pulse)
-};
-CurveShape curve_shape(const std::vector<double>& t, const std::vector<double>& f);
-
-// Time lag (s) that best aligns `f` with `ref` (maximum of their cross-correlation on a common
-// uniform grid of `points` samples over [0, t_end], refined by a parabola through the peak);
-// positive when `f` comes later.
-double cross_correlation_lag(const std::vector<double>& t_ref, const std::vector<double>& ref,
-                             const std::vector<double>& t, const std::vector<double>& f,
-                             double t_end, int points = 2048);
-
-// The classification criteria (docs/study.md, "Classification"), each with its reason there.
-struct ClassifyCriteria {
-  double shift = 0.05;      // |lag| over the reference contact duration above this: "shifted"
-  double tail = 1.10;       // contact duration over the reference's above this: "tail"
-  double asymmetry = 0.30;  // |skewness − skewness of the reference| above this: "asymmetric"
-};
-// "overlapping" or the criteria met, joined by '+' (e.g. "shifted+tail").
-std::string classify(double lag_rel, double duration_ratio, double skew_diff,
-                     const ClassifyCriteria& c = {});
-
-// p-th quantile (0..1) with linear interpolation between order statistics (Hyndman & Fan type 7).
-double quantile(std::vector<double> v, double p);
 
 struct StudyTables {
   int cases = 0, done = 0, failed = 0;

@@ -101,6 +101,17 @@ def timing(vn, tc):
     return gap, gap / vn + 1.5 * tc
 
 
+def elastic_hertz_expected(t, m):
+    """Tests 1 and 2: Hertz peak force, overlap and duration, e = 1; the paper's peak force for the
+    material whose force curve it gives."""
+    ex = {"status": "ok", "peak_force": exp_hertz(), "max_overlap": exp_hertz(), "contact_duration": exp_hertz(),
+          "restitution": exp_value(1.0, None, "elastic: e = 1 exactly; 1e-3 absolute covers the time-step error of the rebound speed", abs_tol=1e-3)}
+    if m == t["paper_curve"]["material"]:
+        pc = t["paper_curve"]
+        ex["peak_force"] = exp_value(pc["peak_force"], PAPER_TOL[0], PAPER_TOL[1] + "; " + pc["source"])
+    return ex
+
+
 def cases(d):
     mats = d["materials"]
     rigid = material(d["rigid_wall"])
@@ -124,11 +135,7 @@ def cases(d):
             "contact": {"law": "hertz-mindlin", "friction": 0.35, "restitution": 1.0},
             "record": {"force_on": "a"},
         }
-        ex = {"status": "ok", "peak_force": exp_hertz(), "max_overlap": exp_hertz(), "contact_duration": exp_hertz(),
-              "restitution": exp_value(1.0, None, "elastic: e = 1 exactly; 1e-3 absolute covers the time-step error of the rebound speed", abs_tol=1e-3)}
-        if m == t["paper_curve"]["material"]:
-            pc = t["paper_curve"]
-            ex["peak_force"] = exp_value(pc["peak_force"], PAPER_TOL[0], PAPER_TOL[1] + "; " + pc["source"])
+        ex = elastic_hertz_expected(t, m)
         out[scene["name"]] = {
             "description": f"Chung & Ooi test 1 ({t['title']}), {m}: r = {r} m, each sphere at {v} m/s. Hertz peak force, overlap and duration.",
             "tags": ["chung-ooi", "test1", "hertz", "sphere-sphere"],
@@ -143,11 +150,7 @@ def cases(d):
         h = hertz(mass(mat, r), r, e_star(mat, rigid), v)
         gap, dur = timing(v, h["contact_duration"])
         scene = wall_scene(f"chung-ooi-t2-{m}", mats, m, r, (0, 0, -v), dur, {"law": "hertz-mindlin", "friction": 0.0, "restitution": 1.0}, rigid, h["contact_duration"], gap=gap)
-        ex = {"status": "ok", "peak_force": exp_hertz(), "max_overlap": exp_hertz(), "contact_duration": exp_hertz(),
-              "restitution": exp_value(1.0, None, "elastic: e = 1 exactly; 1e-3 absolute covers the time-step error of the rebound speed", abs_tol=1e-3)}
-        if m == t["paper_curve"]["material"]:
-            pc = t["paper_curve"]
-            ex["peak_force"] = exp_value(pc["peak_force"], PAPER_TOL[0], PAPER_TOL[1] + "; " + pc["source"])
+        ex = elastic_hertz_expected(t, m)
         out[scene["name"]] = {
             "description": f"Chung & Ooi test 2 ({t['title']}), {m}: r = {r} m at {v} m/s onto a rigid plane (E* = E/(1-nu^2), R* = r).",
             "tags": ["chung-ooi", "test2", "hertz", "sphere-plane"],

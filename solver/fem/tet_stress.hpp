@@ -1,0 +1,40 @@
+// Stress measures of one compressible neo-Hookean tetrahedron (fem/neo_hookean_tet.hpp) from its
+// current node positions: what a picture of a deformed body is coloured by.
+#pragma once
+
+#include <cmath>
+
+#include "core/vec.hpp"
+#include "fem/neo_hookean_tet.hpp"
+
+namespace asperity::fem {
+
+struct TetStress {
+  double von_mises = 0;       // Pa, of the Cauchy stress
+  double energy_density = 0;  // J/m³ of reference volume, Ψ(F)
+  double j = 1;               // det F (≤ 0: inverted, both measures left 0)
+};
+
+// F = Ds Dm⁻¹ (dm_inv column-major, as TetElements stores it). The Cauchy stress of the energy
+// Ψ = μ/2 (tr C − 3) − μ ln J + λ/2 (ln J)² is σ = J⁻¹ P Fᵀ = (μ/J)(b − I) + (λ ln J / J) I with
+// b = F Fᵀ (Bonet & Wood 2008, eq. 6.29); von Mises √(3/2 s:s), s its deviator.
+inline TetStress neo_hookean_tet_stress(const double* dm_inv, Lame lame, const Vec3& x0,
+                                        const Vec3& x1, const Vec3& x2, const Vec3& x3) {
+  Mat3 ds;
+  ds << x1 - x0, x2 - x0, x3 - x0;
+  const Mat3 f = ds * Eigen::Map<const Mat3>(dm_inv);
+  TetStress out;
+  out.j = f.determinant();
+  if (!(out.j > 0)) return out;
+  const double ln_j = std::log(out.j);
+  const Mat3 b = f * f.transpose();
+  const Mat3 sigma =
+      (lame.mu / out.j) * (b - Mat3::Identity()) + (lame.lambda * ln_j / out.j) * Mat3::Identity();
+  const Mat3 s = sigma - sigma.trace() / 3 * Mat3::Identity();
+  out.von_mises = std::sqrt(1.5 * s.cwiseProduct(s).sum());
+  out.energy_density =
+      0.5 * lame.mu * (b.trace() - 3) - lame.mu * ln_j + 0.5 * lame.lambda * ln_j * ln_j;
+  return out;
+}
+
+}  // namespace asperity::fem

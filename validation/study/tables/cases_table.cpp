@@ -1,0 +1,89 @@
+// cases.csv: one row per case (docs/study.md, "Tables").
+#include "study/tables/tables.hpp"
+
+namespace asperity::study::tables {
+
+void write_cases_table(const StudyCases& s, const std::filesystem::path& dir) {
+  const std::vector<std::string> header = {"particle",
+                                           "model",
+                                           "resolution",
+                                           "placement",
+                                           "status",
+                                           "peak_force",
+                                           "impulse",
+                                           "contact_duration",
+                                           "first_contact_time",
+                                           "cpu_seconds",
+                                           "steps",
+                                           "dt",
+                                           "start_gap",
+                                           "volume_change_rel",
+                                           "centroid_shift_rel",
+                                           "max_asperity_rel",
+                                           "max_asperity_change_rel",
+                                           "peak_force_err",
+                                           "impulse_err",
+                                           "contact_duration_err",
+                                           "first_contact_shift",
+                                           "peak_force_err_fem",
+                                           "impulse_err_fem",
+                                           "open_at_end",
+                                           "message"};
+  std::vector<std::vector<OJson>> rows;
+  for (std::size_t i = 0; i < s.cases.size(); ++i) {
+    const CaseData& c = s.cases[i];
+    const CaseKey& k = c.key;
+    // The same model at the reference resolution (the sphere has no resolutions).
+    const CaseData* same = k.model == ModelKind::sphere
+                               ? nullptr
+                               : s.find(k.particle, k.model, s.def.reference, k.placement);
+    const bool ok = StudyCases::usable(&c);
+    double pe = std::nan(""), ie = std::nan(""), de = std::nan(""), shift = std::nan("");
+    if (ok && StudyCases::usable(same)) {
+      pe = rel_err(c.summary["peak_force"], same->summary["peak_force"]);
+      ie = rel_err(c.summary["impulse"], same->summary["impulse"]);
+      de = rel_err(c.summary["contact_duration"], same->summary["contact_duration"]);
+      shift = c.summary["first_contact_time"].get<double>() -
+              same->summary["first_contact_time"].get<double>();
+    }
+    const bool has_mesh = k.model != ModelKind::sphere && c.mesh.is_object();
+    auto mesh_value = [&](const char* key) {
+      return has_mesh ? num_or_null(c.mesh, key) : OJson();
+    };
+    // A contact still open at the end of the window: its duration and impulse are cut short
+    // (the "auto" duration should prevent it; a given duration may not).
+    OJson open_at_end;
+    if (ok) {
+      const Curve curve = read_force(c.dir / "force.csv");
+      open_at_end = !curve.f.empty() && curve.f.back() > 0;
+    }
+    rows.push_back({k.particle,
+                    model_name(k.model),
+                    resolution_or_null(k.model, k.resolution),
+                    placement_name(k.placement),
+                    c.status,
+                    num_or_null(c.summary, "peak_force"),
+                    num_or_null(c.summary, "impulse"),
+                    num_or_null(c.summary, "contact_duration"),
+                    num_or_null(c.summary, "first_contact_time"),
+                    num_or_null(c.summary, "cpu_seconds_thread"),
+                    num_or_null(c.summary, "steps"),
+                    num_or_null(c.summary, "dt"),
+                    finite_or_null(c.start_gap),
+                    mesh_value("volume_change_rel"),
+                    mesh_value("centroid_shift_rel"),
+                    mesh_value("max_asperity_rel"),
+                    mesh_value("max_asperity_change_rel"),
+                    finite_or_null(pe),
+                    finite_or_null(ie),
+                    finite_or_null(de),
+                    finite_or_null(shift),
+                    finite_or_null(s.err_fem[i].peak),
+                    finite_or_null(s.err_fem[i].impulse),
+                    open_at_end,
+                    c.message.empty() ? OJson() : OJson(c.message)});
+  }
+  write_csv(dir / "cases.csv", header, rows);
+}
+
+}  // namespace asperity::study::tables
