@@ -17,7 +17,9 @@
 #include <memory>
 #include <sstream>
 
+#include "app/cli_numbers.hpp"
 #include "app/commands.hpp"
+#include "app/out_folder.hpp"
 #include "contact/restitution_damping.hpp"
 #include "core/error.hpp"
 #include "io/json_file.hpp"
@@ -312,6 +314,7 @@ Json compare(const Json& a, const Json& y, const std::string& key) {
 int cmd_crosscheck(const fs::path& scene_file, const fs::path& out, const std::string& yade,
                    const fs::path& script, std::optional<double> max_rel_diff, bool quiet) {
   const scene::SceneDef s = load_scene_or_case(scene_file);
+  check_out_folder(out);
   const fs::path exe = find_executable(yade);
   if (exe.empty()) {
     throw InputError("crosscheck: YADE not found (\"" + yade +
@@ -442,7 +445,7 @@ void add_crosscheck_command(CLI::App& app, Action& action) {
   cc->add_option("--max-rel-diff", args->max_rel_diff,
                  "Exit 1 unless peak force, impulse and contact duration agree within this "
                  "relative difference")
-      ->check(CLI::PositiveNumber);
+      ->check(real_number(0, 1e300, true));
   cc->add_flag("-q,--quiet", args->quiet, "No summary line on stderr");
   cc->callback([args, &action] {
     action = [args] {

@@ -5,7 +5,9 @@
 #include <iostream>
 #include <memory>
 
+#include "app/cli_numbers.hpp"
 #include "app/commands.hpp"
+#include "app/out_folder.hpp"
 #include "core/error.hpp"
 #include "geometry/mesh_pipeline.hpp"
 
@@ -39,6 +41,7 @@ int cmd_mesh(const MeshArgs& a) {
     options.tet.element_size.size = a.element_size;
     options.element_size_key = a.input.string() + ": --element-size";
   }
+  check_out_folder(a.out);
   const geometry::PreparedParticle p = geometry::prepare_particle(a.input, options);
   geometry::write_prepared_particle(p, a.out);
   if (!a.quiet) {
@@ -70,17 +73,17 @@ void add_mesh_command(CLI::App& app, Action& action) {
   cmd->add_option("--faces", args->faces,
                   "Exact triangle count of the result: even, at least 4, at most the input's "
                   "(default: keep)")
-      ->check(CLI::NonNegativeNumber);
+      ->check(whole_number(0, 10'000'000));
   cmd->add_option("--out", args->out, "Output folder")->required();
   cmd->add_option("--scale", args->scale,
                   "Factor to metres for every coordinate (1e-3 for millimetres)")
-      ->check(CLI::PositiveNumber);
+      ->check(real_number(0, 1e6, true));
   cmd->add_option("--quality", args->quality,
                   "TetGen radius-edge bound with interior points only (0: no refinement)")
-      ->check(CLI::NonNegativeNumber);
+      ->check(real_number(0, 1e6, false));
   cmd->add_option("--min-dihedral", args->min_dihedral,
                   "TetGen smallest dihedral angle asked for, degrees")
-      ->check(CLI::Range(0.0, 70.0));
+      ->check(real_number(0, 70, false));
   auto* element_size = cmd->add_option(
       "--element-size", args->element_size,
       "Target tetrahedron edge length, m (after --scale): the surface triangles are "

@@ -5,7 +5,9 @@
 #include <limits>
 #include <memory>
 
+#include "app/cli_numbers.hpp"
 #include "app/commands.hpp"
+#include "app/out_folder.hpp"
 #include "core/error.hpp"
 #include "geometry/random_particle.hpp"
 #include "geometry/repair_mesh.hpp"
@@ -72,19 +74,27 @@ void add_particle_command(CLI::App& app, Action& action) {
       "particle",
       "Generate a reproducible rock-like particle surface (closed, outward) into FILE "
       "(.off, .obj, .ply, .stl); or with --set, every particle a set file lists into DIR");
-  cmd->add_option("--seed", args->def.seed, "Random seed (the same seed gives the same particle)");
+  cmd->add_option("--seed", args->def.seed, "Random seed (the same seed gives the same particle)")
+      ->check(whole_number(0, std::numeric_limits<std::uint64_t>::max()));
   cmd->add_option("--out", args->out, "Output file (or folder with --set)")->required();
   cmd->add_option("--set", args->set, "A particle set (JSON, e.g. data/particles/set.json)");
-  cmd->add_option("--size", args->def.size, "Equivalent-sphere diameter, m")->capture_default_str();
+  cmd->add_option("--size", args->def.size, "Equivalent-sphere diameter, m")
+      ->check(finite_number())
+      ->capture_default_str();
   cmd->add_option("--elongation", args->def.elongation, "b/a of the base ellipsoid, (0, 1]")
+      ->check(finite_number())
       ->capture_default_str();
   cmd->add_option("--flatness", args->def.flatness, "c/b of the base ellipsoid, (0, 1]")
+      ->check(finite_number())
       ->capture_default_str();
   cmd->add_option("--angularity", args->def.angularity, "Planar cuts: 0 none to 1 many and deep")
+      ->check(finite_number())
       ->capture_default_str();
   cmd->add_option("--roughness", args->def.roughness, "Multi-scale surface noise, 0 to 1")
+      ->check(finite_number())
       ->capture_default_str();
   cmd->add_option("--faces", args->def.faces, "Triangle count (rounded to 20 n^2)")
+      ->check(whole_number(0, 2'000'000))
       ->capture_default_str();
   cmd->add_flag("-q,--quiet", args->quiet, "No summary line on stderr");
   cmd->callback([args, cmd, &action] {
@@ -93,7 +103,11 @@ void add_particle_command(CLI::App& app, Action& action) {
     if (args->set.empty() && cmd->count("--seed") == 0)
       throw CLI::RequiredError("--seed (or --set)");
     action = [args] {
-      if (!args->set.empty()) return make_set(args->set, args->out, args->quiet);
+      if (!args->set.empty()) {
+        check_out_folder(args->out);
+        return make_set(args->set, args->out, args->quiet);
+      }
+      check_out_file(args->out);
       if (const std::string problem = geometry::particle_def_problem(args->def); !problem.empty()) {
         throw InputError("particle: " + problem);
       }

@@ -10,6 +10,7 @@
 #include <vector>
 
 #include "app/commands.hpp"
+#include "app/out_folder.hpp"
 #include "core/error.hpp"
 
 extern char** environ;
@@ -78,6 +79,7 @@ void add_report_command(CLI::App& app, Action& action) {
                                  " is missing (source tree moved?)");
       }
       const fs::path out = args->out.empty() ? args->study : args->out;
+      check_out_folder(out);
       fs::path stability = args->stability;
       const fs::path reports = fs::path(kReportScript).parent_path().parent_path();  // reports/
       if (stability.empty() && fs::is_directory(args->study / "stability"))
@@ -97,6 +99,9 @@ void add_report_command(CLI::App& app, Action& action) {
         argv.insert(argv.end(), {"--penalty", penalty.string()});
       }
       const int rc = run_process(argv);
+      // The script checks its inputs before writing anything; exit 2 is bad input, already
+      // reported on one line naming the file.
+      if (rc == kExitBadInput) return kExitBadInput;
       if (rc != 0)
         throw std::runtime_error("report script failed (exit " + std::to_string(rc) + ")");
       std::fprintf(stderr, "report -> %s, %s\n", (out / "report.md").string().c_str(),

@@ -4,6 +4,7 @@
 #include <memory>
 
 #include "app/commands.hpp"
+#include "app/out_folder.hpp"
 #include "core/error.hpp"
 #include "run/run_scene.hpp"
 #include "scene/scene.hpp"
@@ -21,6 +22,13 @@ struct Args {
 
 int cmd_run(const Args& a) {
   const scene::SceneDef s = scene::load_scene(a.scene);
+  check_out_folder(a.out);
+  // An earlier run's outputs in the same folder would pass for this run's if it is interrupted
+  // or fails: they go before it starts (summary.json, written last, marks a complete run).
+  for (const char* f : {"summary.json", "force.csv", "energy.csv"}) {
+    std::error_code ec;
+    fs::remove(a.out / f, ec);
+  }
   run::RunOptions options{.dt = std::nullopt,
                           .allow_unsafe_dt = a.allow_unsafe_dt,
                           .keep_rows = true,

@@ -5,6 +5,7 @@
 #include <string>
 
 #include "app/commands.hpp"
+#include "app/out_folder.hpp"
 #include "core/error.hpp"
 #include "run/stability_sweep.hpp"
 #include "scene/scene.hpp"
@@ -43,6 +44,7 @@ void add_stability_command(CLI::App& app, Action& action) {
                                               : run::parse_factors(args->factors, "--factors");
       if (args->reference_factor < 0) throw InputError("--reference-factor: must be > 0");
       const scene::SceneDef s = scene::load_scene(args->scene);
+      check_out_folder(args->out);
       const auto progress = [&](const run::StabilityRow& r, int k, int n) {
         if (!args->quiet) {
           std::fprintf(

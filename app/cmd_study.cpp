@@ -6,7 +6,9 @@
 #include <memory>
 #include <optional>
 
+#include "app/cli_numbers.hpp"
 #include "app/commands.hpp"
+#include "app/out_folder.hpp"
 #include "cluster/world.hpp"
 #include "core/error.hpp"
 #include "study/study_def.hpp"
@@ -48,6 +50,7 @@ int run(const StudyArgs& args) {
   const study::Shard shard = args.shard.empty() ? study::Shard{} : study::parse_shard(args.shard);
   if (shard.count > 0 && args.collect) throw InputError("--collect: not with --shard");
   const study::StudyDef def = study::load_study(args.study);
+  check_out_folder(args.out);
   if (args.collect) {
     if (cluster::launched_ranks() > 1) throw InputError("--collect: run it as one process");
     return collect(def, args);
@@ -89,7 +92,8 @@ void add_study_command(CLI::App& app, Action& action) {
       ->required();
   cmd->add_option("--out", args->out, "Output folder")->required();
   cmd->add_option("-j,--jobs", args->jobs,
-                  "Worker threads per process (default: the study's \"jobs\", else every core)");
+                  "Worker threads per process (default: the study's \"jobs\", else every core)")
+      ->check(whole_number(0, 4096));
   cmd->add_option("--shard", args->shard,
                   "K/N: only the K-th of N shards (every N-th particle from the K-th: its meshes "
                   "and cases; no tables); shards may run side by side into one folder");

@@ -3,10 +3,12 @@
 #include <cstdio>
 #include <filesystem>
 #include <fstream>
+#include <map>
 #include <memory>
 #include <sstream>
 
 #include "app/commands.hpp"
+#include "app/out_folder.hpp"
 #include "case.hpp"
 #include "cluster/task_pool.hpp"
 #include "core/error.hpp"
@@ -70,6 +72,16 @@ int cmd_validate(const std::vector<fs::path>& paths, const fs::path& out, int jo
   // Load every case first: a bad case file is bad input, reported before anything runs.
   std::vector<validation::CaseDef> cases;
   for (const fs::path& f : files) cases.push_back(validation::load_case(f));
+  // Each case writes into DIR/cases/NAME: two cases of one name would overwrite one folder.
+  std::map<std::string, fs::path> seen;
+  for (const validation::CaseDef& c : cases) {
+    const auto [it, fresh] = seen.emplace(c.name, c.file);
+    if (!fresh) {
+      throw InputError(c.file.string() + ": case: \"" + c.name + "\" is also the name of " +
+                       it->second.string() + " (each case writes into a folder of its name)");
+    }
+  }
+  check_out_folder(out);
 
   cluster::World world;
   return world.guard([&] {

@@ -8,6 +8,33 @@
 #include "app/commands.hpp"
 #include "cluster/world.hpp"
 #include "core/error.hpp"
+#include "core/interrupt.hpp"
+
+namespace {
+
+// The contract's "one line on stderr": a message quotes input (keys, file names, values), and
+// input may hold newlines, control bytes or megabytes; those are escaped and cut here, once.
+std::string one_line(const std::string& message) {
+  constexpr std::size_t kMax = 600;
+  std::string out;
+  for (const char c : message) {
+    if (out.size() >= kMax) {
+      out += "...";
+      break;
+    }
+    if (static_cast<unsigned char>(c) < 0x20 || c == 0x7f) {
+      static const char* hex = "0123456789abcdef";
+      out += "\\x";
+      out += hex[(static_cast<unsigned char>(c) >> 4) & 0xf];
+      out += hex[static_cast<unsigned char>(c) & 0xf];
+    } else {
+      out += c;
+    }
+  }
+  return out;
+}
+
+}  // namespace
 
 int main(int argc, char** argv) {
   using namespace asperity;
@@ -29,6 +56,18 @@ int main(int argc, char** argv) {
   app::add_report_command(cli, action);
   app::add_recommend_command(cli, action);
 
+  // CLI11 reads an unknown first word as a stray positional ("A subcommand is required").
+  if (argc > 1 && argv[1][0] != '-') {
+    const auto known = cli.get_subcommands([](CLI::App*) { return true; });
+    if (std::none_of(known.begin(), known.end(),
+                     [&](const CLI::App* c) { return c->get_name() == argv[1]; })) {
+      std::string names;
+      for (const CLI::App* c : known) names += (names.empty() ? "" : ", ") + c->get_name();
+      std::cerr << "asperity: unknown command \"" << one_line(argv[1]) << "\" (commands: " << names
+                << "; see asperity --help)\n";
+      return kExitBadInput;
+    }
+  }
   try {
     cli.parse(argc, argv);
   } catch (const CLI::CallForHelp& e) {
@@ -40,17 +79,18 @@ int main(int argc, char** argv) {
   } catch (const CLI::ParseError& e) {
     std::string what = e.what();
     std::replace(what.begin(), what.end(), '\n', ' ');
-    std::cerr << "asperity: " << what << " (see asperity --help)\n";
+    std::cerr << "asperity: " << one_line(what) << " (see asperity --help)\n";
     return kExitBadInput;
   }
+  install_interrupt_cleanup();
   try {
     return action ? action() : kExitBadInput;
   } catch (const InputError& e) {
     // Under mpirun every rank meets the same bad input: rank 0 says it once.
-    if (cluster::launched_rank() == 0) std::cerr << "asperity: " << e.what() << "\n";
+    if (cluster::launched_rank() == 0) std::cerr << "asperity: " << one_line(e.what()) << "\n";
     return kExitBadInput;
   } catch (const std::exception& e) {
-    std::cerr << "asperity: error: " << e.what() << "\n";
+    std::cerr << "asperity: error: " << one_line(e.what()) << "\n";
     return kExitFailure;
   }
 }

@@ -60,20 +60,107 @@ std::optional<double> summary_number(const nlohmann::ordered_json& summary,
   return it->get<double>();
 }
 
+// The scalar keys the runners write into summary.json (solver/run/, docs/contract.md): a case can
+// check only these, and a misspelt quantity is bad input before anything runs, not a failed check
+// after the run. A new summary key a case checks is added here.
+constexpr std::string_view kCheckable[] = {"angular_velocity_change",
+                                           "assumed_approach_speed",
+                                           "auto_status",
+                                           "contact_duration",
+                                           "contact_evaluations",
+                                           "contact_law",
+                                           "contact_updates",
+                                           "contacts_touching",
+                                           "cpu_seconds",
+                                           "dt",
+                                           "dt_contact",
+                                           "dt_critical_predicted",
+                                           "dt_element",
+                                           "dt_limited_by",
+                                           "dt_rayleigh",
+                                           "dt_safety",
+                                           "dt_stable_max_measured",
+                                           "ended_by",
+                                           "energy_drift",
+                                           "final_speed",
+                                           "first_contact_time",
+                                           "first_unstable_factor",
+                                           "friction",
+                                           "impulse",
+                                           "incident_angle_deg",
+                                           "max_overlap",
+                                           "max_penetration_ratio",
+                                           "model",
+                                           "neighbour_rebuilds",
+                                           "normal_velocity_in",
+                                           "normal_velocity_out",
+                                           "peak_force",
+                                           "penalty",
+                                           "penalty_alpha",
+                                           "predicted_over_measured",
+                                           "rebound_angle_deg",
+                                           "reference_factor",
+                                           "reference_impulse",
+                                           "reference_peak_force",
+                                           "reference_status",
+                                           "restitution",
+                                           "simulated_time",
+                                           "slip_ratio",
+                                           "slip_velocity_in",
+                                           "slip_velocity_out",
+                                           "spin_in",
+                                           "spin_out",
+                                           "stable_factor_max",
+                                           "status",
+                                           "status_at_largest_factor",
+                                           "steps",
+                                           "surface_tets",
+                                           "sweep_cpu_seconds",
+                                           "tangential_restitution",
+                                           "tangential_speed_out",
+                                           "tangential_velocity_in",
+                                           "tangential_velocity_out",
+                                           "tets",
+                                           "wall_seconds"};
+
 }  // namespace
+
+std::string case_name_problem(const std::string& name) {
+  if (name.empty()) return "must not be empty";
+  if (name.size() > 200) return "longer than 200 characters";
+  if (name == "." || name == "..") return "must not be \"" + name + "\" (it names a folder)";
+  for (const char c : name) {
+    if (c == '/' || c == '\\')
+      return "must not contain a path separator (it names the case's output folder)";
+    if (static_cast<unsigned char>(c) < 0x20 || c == 0x7f)
+      return "must not contain control characters";
+  }
+  return "";
+}
 
 CaseDef load_case(const std::filesystem::path& file) {
   const io::Json json = io::read_json_file(file);
   const JsonReader r(json, file, "");
+  if (!r.has("case") && r.has("bodies")) {
+    r.fail("",
+           "this is a scene, not a validation case (no \"case\", \"scene\" and "
+           "\"expected\"); run it with asperity run");
+  }
   r.only_keys({"case", "description", "tags", "source", "scene", "sweep", "expected"});
   CaseDef c;
   c.file = file;
   c.name = r.string("case");
+  // The name becomes a folder under --out: a path would write outside it.
+  if (const std::string problem = case_name_problem(c.name); !problem.empty())
+    r.fail("case", problem);
   c.description = r.has("description") ? r.string("description") : "";
   if (r.has("tags")) {
     const JsonReader t = r.child("tags");
-    for (std::size_t i = 0; i < t.require_array(); ++i)
+    for (std::size_t i = 0; i < t.require_array(); ++i) {
+      if (!t.at(i).value().is_string())
+        t.at(i).fail("", "must be a string (got " + io::echo(t.at(i).value()) + ")");
       c.tags.push_back(t.at(i).value().get<std::string>());
+    }
   }
   r.child("scene").require_object();
   c.scene = scene::parse_scene(json.at("scene"), file, "scene");
@@ -97,6 +184,11 @@ CaseDef load_case(const std::filesystem::path& file) {
   std::optional<contact::HertzImpact> hertz;
   for (const auto& [quantity, spec] : ex.value().items()) {
     const JsonReader e(spec, file, "expected." + quantity);
+    if (std::find(std::begin(kCheckable), std::end(kCheckable), quantity) == std::end(kCheckable)) {
+      const std::string near = io::closest_key(quantity, kCheckable);
+      ex.fail(quantity, "not a quantity summary.json reports" +
+                            (near.empty() ? std::string() : " (did you mean \"" + near + "\"?)"));
+    }
     Check ch;
     ch.quantity = quantity;
     if (spec.is_string()) {  // e.g. "status": "ok"
@@ -156,6 +248,8 @@ CaseDef load_case(const std::filesystem::path& file) {
 std::vector<std::filesystem::path> find_cases(const std::filesystem::path& path) {
   std::vector<std::filesystem::path> out;
   if (std::filesystem::is_regular_file(path)) return {path};
+  if (std::filesystem::exists(path) && !std::filesystem::is_directory(path))
+    throw InputError(path.string() + ": not a regular file (a device, FIFO or socket)");
   if (!std::filesystem::is_directory(path))
     throw InputError(path.string() + ": no such case file or folder");
   for (const auto& e : std::filesystem::recursive_directory_iterator(path)) {

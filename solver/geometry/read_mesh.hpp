@@ -2,6 +2,7 @@
 // polygon soup, with one-line errors that name the file and the defect.
 #pragma once
 
+#include <cstdint>
 #include <filesystem>
 #include <vector>
 
@@ -15,6 +16,9 @@ struct PolygonSoup {
   std::vector<std::vector<int>> polygons;  // vertex indices, any size ≥ 3
 };
 
+// The largest mesh file read: a 10-million-triangle binary STL is 500 MB.
+inline constexpr std::uintmax_t kMaxMeshBytes = 1u << 30;  // 1 GiB
+
 struct ReadOptions {
   double scale = 1.0;  // multiplies every coordinate: 1e-3 for a mesh in millimetres
 };
@@ -23,7 +27,9 @@ struct ReadOptions {
 // "FILE: problem" for: a missing or empty file, an unknown extension, a truncated binary STL
 // (declared against actual triangle count), content that does not parse as the format (with a
 // hint when it looks like another format), NaN or infinite coordinates (with their count), a
-// polygon index out of range, a file with no faces, and a scale that is not positive and finite.
+// polygon index out of range, a file with no faces, and a scale that is not positive and finite;
+// and before any reader runs: anything but a regular file, a file over kMaxMeshBytes, and OFF or
+// PLY header counts the file's size cannot hold (so nothing is allocated for them).
 PolygonSoup read_mesh_file(const std::filesystem::path& file, const ReadOptions& options = {});
 
 }  // namespace asperity::geometry

@@ -5,19 +5,31 @@
 
 #include <fstream>
 #include <stdexcept>
+#include <system_error>
+
+#include "core/interrupt.hpp"
 
 namespace asperity::io {
 
 void write_atomically(const std::filesystem::path& file, const std::string& text) {
   const std::filesystem::path tmp = file.string() + ".partial-" + std::to_string(::getpid());
-  {
-    std::ofstream out(tmp, std::ios::binary | std::ios::trunc);
-    if (!out) throw std::runtime_error(tmp.string() + ": cannot write");
-    out << text;
-    out.flush();
-    if (!out) throw std::runtime_error(tmp.string() + ": write failed");
+  // The temporary goes whatever happens: a failed write (disk full) or an interrupt must not
+  // leave a *.partial-PID beside complete-looking files.
+  const RemoveOnInterrupt guard(tmp);
+  try {
+    {
+      std::ofstream out(tmp, std::ios::binary | std::ios::trunc);
+      if (!out) throw std::runtime_error(tmp.string() + ": cannot write");
+      out << text;
+      out.flush();
+      if (!out) throw std::runtime_error(tmp.string() + ": write failed");
+    }
+    std::filesystem::rename(tmp, file);
+  } catch (...) {
+    std::error_code ec;
+    std::filesystem::remove(tmp, ec);
+    throw;
   }
-  std::filesystem::rename(tmp, file);
 }
 
 }  // namespace asperity::io

@@ -14,6 +14,8 @@ namespace {
 
 using io::JsonReader;
 
+constexpr double kSpeedOfLight = 299'792'458.0;  // m/s
+
 Material parse_material(const JsonReader& m, const std::string& name) {
   m.only_keys_in(keys::kMaterial);
   Material out;
@@ -117,6 +119,12 @@ ContactDef parse_contact(const JsonReader& c) {
 SceneDef parse_scene(const io::Json& json, const std::filesystem::path& file,
                      const std::string& prefix) {
   const JsonReader r(json, file, prefix);
+  // A validation case holds a scene; "unknown key case" would hide what the user has in hand.
+  if (prefix.empty() && r.has("case") && r.has("scene")) {
+    r.fail("",
+           "this is a validation case (it has \"case\" and \"scene\"), not a scene; run it "
+           "with asperity validate");
+  }
   r.only_keys_in(keys::kScene);
   SceneDef s;
   s.file = file;
@@ -127,7 +135,7 @@ SceneDef parse_scene(const io::Json& json, const std::filesystem::path& file,
     const auto& dt = r.value().at("dt");
     if (dt.is_string()) {
       if (dt.get<std::string>() != "auto")
-        r.fail("dt", "must be a number or \"auto\" (got " + dt.dump() + ")");
+        r.fail("dt", "must be a number or \"auto\" (got " + io::echo(dt) + ")");
     } else {
       s.dt = r.positive("dt");
     }
@@ -175,6 +183,13 @@ SceneDef parse_scene(const io::Json& json, const std::filesystem::path& file,
     }
     body.position = b.vec3_or("position", Vec3::Zero());
     body.velocity = b.vec3_or("velocity", Vec3::Zero());
+    // Newtonian contact mechanics ends well below the speed of light; beyond it the step bounds
+    // (which scale with 1/v) underflow to 0 and the message would be "inf steps of 0 s".
+    // (The norm of [0, 0, 1e308] overflows to inf, which still compares above.)
+    if (body.velocity.norm() > kSpeedOfLight) {
+      b.fail("velocity", "faster than light (got " + io::echo(b.value().at("velocity")) +
+                             " m/s; the speed of light is 299792458 m/s)");
+    }
     body.angular_velocity = b.vec3_or("angular_velocity", Vec3::Zero());
     const bool is_wall = std::holds_alternative<PlaneShape>(body.shape) ||
                          std::holds_alternative<BoxShape>(body.shape);
@@ -195,6 +210,18 @@ SceneDef parse_scene(const io::Json& json, const std::filesystem::path& file,
   }
 
   if (r.has("contact")) s.contact = parse_contact(r.child("contact"));
+  // The potential law acts between tetrahedral meshes; a sphere has none (say so here, where the
+  // key is known, rather than as a shape problem in the runner).
+  if (s.contact.law == ContactLaw::potential) {
+    for (std::size_t i = 0; i < s.bodies.size(); ++i) {
+      if (std::holds_alternative<SphereShape>(s.bodies[i].shape)) {
+        r.child("contact").fail(
+            "law", "\"potential\" acts between meshed bodies, and bodies[" + std::to_string(i) +
+                       "] is a sphere; use hertz, hertz-mindlin or linear, or mesh the sphere "
+                       "(shape \"mesh\")");
+      }
+    }
+  }
 
   if (r.has("output")) {
     const JsonReader out = r.child("output");

@@ -27,6 +27,112 @@ TABLES = ["cases.csv", "classification.csv", "particle_classes.csv", "cpu_fit.cs
 MODEL_COLOURS = {"fem": "tab:blue", "rigid": "tab:orange", "sphere": "tab:green"}
 
 
+# What each input must hold (as `asperity study` writes it): the columns the report reads, and
+# those that must be numbers (an empty cell is allowed: a failed case has no peak force).
+SCHEMA = {
+    "cases.csv": (["particle", "model", "resolution", "placement", "status", "peak_force", "impulse",
+                   "contact_duration", "first_contact_time", "cpu_seconds", "max_asperity_change_rel",
+                   "peak_force_err", "impulse_err", "peak_force_err_fem", "impulse_err_fem"],
+                  ["resolution", "peak_force", "impulse", "contact_duration", "first_contact_time",
+                   "cpu_seconds", "max_asperity_change_rel", "peak_force_err", "impulse_err",
+                   "peak_force_err_fem", "impulse_err_fem"]),
+    "classification.csv": (["particle", "model", "placement", "resolution", "class"], ["resolution"]),
+    "particle_classes.csv": (["particle", "model", "placement", "classes", "coarsest_class"], []),
+    "cpu_fit.csv": (["model", "placement", "exponent", "coefficient", "points"], ["exponent", "coefficient"]),
+    "candidates.csv": (["placement", "model", "resolution", "particles", "peak_force_err_median",
+                        "peak_force_err_p90", "impulse_err_median", "impulse_err_p90", "cpu_seconds_median"],
+                       ["resolution", "particles", "peak_force_err_median", "peak_force_err_p90",
+                        "impulse_err_median", "impulse_err_p90", "cpu_seconds_median"]),
+    "guidelines.csv": (["placement", "metric", "tolerance", "statistic", "model", "resolution", "error",
+                        "cpu_seconds_median", "is_reference"],
+                       ["tolerance", "resolution", "error", "cpu_seconds_median"]),
+}
+SUMMARY_KEYS = {"study": str, "particles": int, "resolutions": list, "models": list, "placements": list,
+                "cases": int, "done": int, "failed": int, "cpu_seconds_total": (int, float), "published": dict,
+                "last_run": dict}
+MAX_INPUT_BYTES = 256 << 20  # far above a 1100-case study's tables (about 1 MB)
+
+
+class BadInput(Exception):
+    """An input file that is not what `asperity study` writes: exit 2, one line, nothing written."""
+
+
+def read_text(path):
+    if not os.path.isfile(path):
+        raise BadInput(f"{path}: missing or not a regular file (run asperity study first)")
+    if os.path.getsize(path) > MAX_INPUT_BYTES:
+        raise BadInput(f"{path}: {os.path.getsize(path)} bytes, more than a study writes")
+    with open(path, "rb") as fh:
+        data = fh.read()
+    nul = data.find(b"\0")
+    if nul >= 0:
+        raise BadInput(f"{path}: binary content (a NUL byte at offset {nul})")
+    try:
+        return data.decode("utf-8")
+    except UnicodeDecodeError as e:
+        raise BadInput(f"{path}: not UTF-8 text (byte {e.start})") from None
+
+
+def check_table(path, columns, numeric):
+    text = read_text(path)
+    try:
+        rows = list(csv.reader(text.splitlines()))
+    except csv.Error as e:
+        raise BadInput(f"{path}: not CSV ({e})") from None
+    if not rows:
+        raise BadInput(f"{path}: empty (no header)")
+    header = rows[0]
+    missing = [c for c in columns if c not in header]
+    if missing:
+        raise BadInput(f"{path}: line 1: header lacks column {missing[0]!r}" +
+                       (f" (and {len(missing) - 1} more)" if len(missing) > 1 else ""))
+    if len(rows) < 2:
+        raise BadInput(f"{path}: no rows below the header (truncated?)")
+    for i, row in enumerate(rows[1:], start=2):
+        if len(row) != len(header):
+            raise BadInput(f"{path}: line {i}: {len(row)} fields, the header has {len(header)} (truncated?)")
+        for c in numeric:
+            cell = row[header.index(c)]
+            if cell == "":
+                continue
+            try:
+                float(cell)
+            except ValueError:
+                raise BadInput(f"{path}: line {i}: {c}: not a number (got {cell[:40]!r})") from None
+
+
+def check_json(path, keys=None, nested=None):
+    text = read_text(path)
+    try:
+        j = json.loads(text)
+    except (ValueError, RecursionError) as e:
+        raise BadInput(f"{path}: invalid JSON ({str(e)[:80]})") from None
+    if not isinstance(j, dict):
+        raise BadInput(f"{path}: must be a JSON object")
+    for k, t in (keys or {}).items():
+        if k not in j:
+            raise BadInput(f"{path}: {k}: missing required key")
+        if not isinstance(j[k], t) or isinstance(j[k], bool):
+            raise BadInput(f"{path}: {k}: wrong type (got {json.dumps(j[k])[:40]})")
+    for k, sub in (nested or {}).items():
+        missing = [s for s in sub if s not in j[k]]
+        if missing:
+            raise BadInput(f"{path}: {k}.{missing[0]}: missing required key")
+
+
+def check_inputs(study):
+    """Every input checked before anything is written (exit 2 and one line otherwise)."""
+    if not os.path.isdir(study):
+        raise BadInput(f"{study}: not a folder")
+    for t in TABLES:
+        columns, numeric = SCHEMA[t]
+        check_table(os.path.join(study, t), columns, numeric)
+    check_json(os.path.join(study, "study_summary.json"), SUMMARY_KEYS,
+               {"published": ["simulations", "cpu_seconds_100", "cpu_seconds_1000", "cpu_growth_100_1000"],
+                "last_run": ["wall_seconds", "cpu_seconds", "ran", "kept"]})
+    check_json(os.path.join(study, "guidelines.json"))
+
+
 def read_csv(path):
     with open(path, newline="") as f:
         return list(csv.DictReader(f))
@@ -365,11 +471,10 @@ def main():
     ap.add_argument("--yade", default="")
     ap.add_argument("--penalty", default="")
     a = ap.parse_args()
+    check_inputs(a.study)
     os.makedirs(a.out, exist_ok=True)
     for t in TABLES + ["study_summary.json", "guidelines.json"]:
         src = os.path.join(a.study, t)
-        if not os.path.exists(src):
-            sys.exit(f"study_report: {src}: missing (run asperity study first)")
         if os.path.abspath(src) != os.path.abspath(os.path.join(a.out, t)):
             shutil.copyfile(src, os.path.join(a.out, t))
     cases = read_csv(os.path.join(a.study, "cases.csv"))
@@ -473,4 +578,11 @@ def main():
 
 
 if __name__ == "__main__":
-    main()
+    try:
+        main()
+    except BadInput as e:
+        print(f"asperity: {e}", file=sys.stderr)
+        sys.exit(2)
+    except Exception as e:  # a defect here, not bad input: one line, not a traceback
+        print(f"asperity: error: report: {type(e).__name__}: {str(e)[:200]}", file=sys.stderr)
+        sys.exit(1)

@@ -138,8 +138,12 @@ StudyDef load_study(const fs::path& file) {
     s.resolutions.clear();
     for (std::size_t i = 0; i < n; ++i) {
       const Json& v = list.at(i).value();
-      if (!v.is_number_integer() || v.get<long long>() < 20 || v.get<long long>() > 1'000'000) {
-        list.at(i).fail("", "must be a triangle count from 20 to 1000000 (got " + v.dump() + ")");
+      // A closed triangle mesh has an even face count (2F = 3E), and the simplifier reaches
+      // exactly N only for even N (docs/geometry.md): an odd N would fail every case of it.
+      if (!v.is_number_integer() || v.get<long long>() < 20 || v.get<long long>() > 1'000'000 ||
+          v.get<long long>() % 2 != 0) {
+        list.at(i).fail(
+            "", "must be an even triangle count from 20 to 1000000 (got " + io::echo(v) + ")");
       }
       s.resolutions.push_back(v.get<long>());
     }
@@ -164,7 +168,7 @@ StudyDef load_study(const fs::path& file) {
       else if (m == "sphere")
         s.models.push_back(ModelKind::sphere);
       else
-        list.at(i).fail("", "must be \"fem\", \"rigid\" or \"sphere\" (got " + v.dump() + ")");
+        list.at(i).fail("", "must be \"fem\", \"rigid\" or \"sphere\" (got " + io::echo(v) + ")");
     }
     if (s.models.empty()) list.fail("", "must list at least one model");
   }
@@ -180,7 +184,7 @@ StudyDef load_study(const fs::path& file) {
       else if (m == "lowest")
         s.placements.push_back(Placement::lowest);
       else
-        list.at(i).fail("", "must be \"centroid\" or \"lowest\" (got " + v.dump() + ")");
+        list.at(i).fail("", "must be \"centroid\" or \"lowest\" (got " + io::echo(v) + ")");
     }
     if (s.placements.empty()) list.fail("", "must list at least one placement");
   }
@@ -191,7 +195,7 @@ StudyDef load_study(const fs::path& file) {
     if (o.is_string()) {
       if (o != "random")
         r.fail("orientation",
-               "must be [rx, ry, rz] in degrees or \"random\" (got " + o.dump() + ")");
+               "must be [rx, ry, rz] in degrees or \"random\" (got " + io::echo(o) + ")");
       s.random_orientation = true;
     } else {
       s.orientation_deg = r.vec3("orientation");

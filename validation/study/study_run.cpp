@@ -3,6 +3,7 @@
 
 #include <fcntl.h>
 #include <sys/file.h>
+#include <sys/stat.h>
 #include <unistd.h>
 
 #include <algorithm>
@@ -12,6 +13,7 @@
 #include <ctime>
 #include <fstream>
 #include <map>
+#include <memory>
 #include <numbers>
 #include <optional>
 #include <sstream>
@@ -378,24 +380,43 @@ std::vector<std::size_t> shard_particles(const StudyDef& def, const Shard& shard
 
 FolderLock::FolderLock(const fs::path& out, const Shard& shard) {
   // A whole run excludes everything else; shards share the study lock and each holds its own.
-  const auto take = [](const fs::path& file, int how, const std::string& who) {
-    const int fd = ::open(file.c_str(), O_CREAT | O_RDWR, 0644);
-    if (fd < 0 || ::flock(fd, how | LOCK_NB) != 0) {
-      if (fd >= 0) ::close(fd);
-      throw InputError(file.parent_path().string() + ": " + who + " is running in this folder");
+  const auto take = [this](const fs::path& file, int how, const std::string& who) {
+    for (int attempt = 0; attempt < 3; ++attempt) {
+      const int fd = ::open(file.c_str(), O_CREAT | O_RDWR, 0644);
+      if (fd < 0 || ::flock(fd, how | LOCK_NB) != 0) {
+        if (fd >= 0) ::close(fd);
+        throw InputError(file.parent_path().string() + ": " + who + " is running in this folder");
+      }
+      // A study that just ended removed the file we locked (see the destructor): take a new one.
+      struct stat held {};
+      struct stat named {};
+      if (::fstat(fd, &held) == 0 && ::stat(file.c_str(), &named) == 0 &&
+          held.st_ino == named.st_ino) {
+        fds_.push_back(fd);
+        files_.push_back(file);
+        return;
+      }
+      ::close(fd);
     }
-    return fd;
+    throw std::runtime_error(file.string() + ": cannot take the lock");
   };
-  fds_.push_back(
-      take(out / "study.lock", shard.count == 0 ? LOCK_EX : LOCK_SH, "another asperity study"));
+  take(out / "study.lock", shard.count == 0 ? LOCK_EX : LOCK_SH, "another asperity study");
   if (shard.count > 0) {
     const std::string name = std::to_string(shard.index) + "-of-" + std::to_string(shard.count);
-    fds_.push_back(take(out / ("shard-" + name + ".lock"), LOCK_EX, "shard " + name));
+    take(out / ("shard-" + name + ".lock"), LOCK_EX, "shard " + name);
   }
+  // SIGINT/SIGTERM remove the locks this process alone holds (a shared study.lock stays).
+  for (std::size_t i = shard.count == 0 ? 0 : 1; i < files_.size(); ++i)
+    on_interrupt_.push_back(std::make_unique<RemoveOnInterrupt>(files_[i]));
 }
 
 FolderLock::~FolderLock() {
-  for (int fd : fds_) ::close(fd);
+  // However the study ends (an exception, exit 2 included), a lock no one else holds goes: an
+  // exclusive hold is taken first, so a shard still running keeps the shared study.lock.
+  for (std::size_t i = 0; i < fds_.size(); ++i) {
+    if (::flock(fds_[i], LOCK_EX | LOCK_NB) == 0) ::unlink(files_[i].c_str());
+    ::close(fds_[i]);
+  }
 }
 
 void adopt_folder(const StudyDef& def, const fs::path& out) {

@@ -15,10 +15,12 @@
 #pragma once
 
 #include <filesystem>
+#include <memory>
 #include <string>
 #include <vector>
 
 #include "cluster/world.hpp"
+#include "core/interrupt.hpp"
 #include "study/study_def.hpp"
 
 namespace asperity::study {
@@ -62,6 +64,8 @@ class FolderLock {
 
  private:
   std::vector<int> fds_;
+  std::vector<std::filesystem::path> files_;
+  std::vector<std::unique_ptr<RemoveOnInterrupt>> on_interrupt_;
 };
 
 // Makes DIR the folder of this study definition: writes DIR/study.json on first use; InputError

@@ -1,0 +1,286 @@
+#!/usr/bin/env bash
+# Hostile input through the real program (issue 18), one block per class of defect: every bad
+# input is exit 2 with one line on stderr naming the file (or option) and the key; nothing is
+# written outside --out (nor inside it); it finishes within seconds under a memory cap; an
+# interrupted run or study leaves nothing that looks complete and no lock.
+# Usage: hostile.sh ASPERITY_BINARY SOURCE_DIR
+set -u
+bin=$(realpath "$1")
+src=$(cd "$2" && pwd)
+work=$(mktemp -d)
+trap 'rm -rf "$work"' EXIT
+in=$work/in    # inputs, made before each check
+out=$work/o    # every --out lies under here; a bad input must leave no folder
+cwd=$work/cwd  # the program's working folder: nothing may appear in it
+mkdir -p "$in" "$out" "$cwd"
+passed=0
+failed=0
+check() {  # check NAME CONDITION...
+  local name=$1; shift
+  if "$@"; then passed=$((passed + 1)); else failed=$((failed + 1)); echo "FAIL: $name"; fi
+}
+# Memory cap for one run (bounded memory): 2 GiB of address space. AddressSanitizer reserves
+# terabytes of address space up front, so a sanitized binary runs uncapped (its own checks apply).
+if ldd "$bin" 2>/dev/null | grep -q libasan; then mem_kb=unlimited; else mem_kb=$((2 * 1024 * 1024)); fi
+# Seconds one bad input may take: each is refused before any work, in well under a second; the
+# margin covers a loaded 2-core CI machine and the sanitizer build.
+limit=20
+
+# bad NAME PATTERN ARGS...: runs `asperity ARGS` and checks exit 2 within the limit, one line on
+# stderr that matches PATTERN (grep -E) and is short, and that nothing was written: no new file in
+# the inputs or the working folder and nothing under $out.
+bad() {
+  local name=$1 pattern=$2; shift 2
+  touch "$work/stamp"
+  sleep 0.01
+  (cd "$cwd" && ulimit -v "$mem_kb" && timeout -k 5 "$limit" "$bin" "$@") \
+    > "$work/stdout" 2> "$work/stderr"
+  local rc=$?
+  check "$name: exit 2 (got $rc: $(head -c 300 "$work/stderr"))" test "$rc" -eq 2
+  check "$name: one line on stderr" test "$(wc -l < "$work/stderr")" -eq 1
+  check "$name: message matches '$pattern' (got: $(head -c 300 "$work/stderr"))" \
+    grep -qE -- "$pattern" "$work/stderr"
+  check "$name: message under 700 bytes" test "$(wc -c < "$work/stderr")" -lt 700
+  check "$name: nothing written (found: $(find "$in" "$cwd" -newer "$work/stamp" | head -3))" \
+    test -z "$(find "$in" "$cwd" -newer "$work/stamp")"
+  check "$name: nothing under --out (found: $(ls -A "$out" | head -3))" test -z "$(ls -A "$out")"
+  rm -rf "${out:?}"/* "$work/escape" /tmp/asperity-hostile-escape-$$
+}
+
+# A good scene to vary: the Hertz glass sphere on a plane (validation/cases/hertz/).
+case_file=$src/validation/cases/hertz/hertz-glass-sphere-plane-1ms.json
+/usr/bin/python3 -c "import json,sys; print(json.dumps(json.load(open(sys.argv[1]))['scene']))" \
+  "$case_file" > "$in/good.json"
+variant() {  # variant NAME PYTHON-STATEMENT: $in/NAME.json = good.json with s changed
+  /usr/bin/python3 - "$in/good.json" "$in/$1.json" "$2" <<'PY'
+import json, sys
+s = json.load(open(sys.argv[1]))
+exec(sys.argv[3])
+json.dump(s, open(sys.argv[2], "w"))
+PY
+}
+
+# --- 1. Deep nesting (was SIGSEGV: the message echoed the value recursively) and huge values (a
+# million-element gravity was echoed whole: 47 MB of stderr for five million)
+/usr/bin/python3 -c "
+import json, sys
+s = json.load(open(sys.argv[1]))
+text = json.dumps(s).replace('\"gravity\": [0.0, 0.0, 0.0]', '\"gravity\": ' + '[' * 100000 + ']' * 100000)
+if '[[[' not in text:
+    s['gravity'] = 0
+    text = json.dumps(s).replace('\"gravity\": 0', '\"gravity\": ' + '[' * 100000 + ']' * 100000)
+open(sys.argv[2], 'w').write(text)" "$in/good.json" "$in/deep.json"
+bad "nested 100,000 deep" "deep.json:.*gravity.*nested deeper than 64" run "$in/deep.json" --out "$out/r"
+printf '%s' "$(printf '{"a":%.0s' $(seq 70))" > "$in/deep2.json"
+bad "nested objects" "deep2.json:.*nested deeper than 64" run "$in/deep2.json" --out "$out/r"
+variant huge "s['gravity'] = [1.5] * 1000000"
+bad "million-element gravity, echo cut" "huge.json: gravity: must be an array of 3 numbers \(got \[1\.5,1\.5.*\.\.\. \(" \
+  run "$in/huge.json" --out "$out/r"
+variant longkey "s['x' * 1000000] = 1"
+bad "a 1 MB key" "longkey.json: x+\.\.\.: unknown key" run "$in/longkey.json" --out "$out/r"
+variant newlinekey "s['a\nb'] = 1"
+bad "a key with a newline stays one line" 'newlinekey.json: a\\x0ab: unknown key' run "$in/newlinekey.json" --out "$out/r"
+
+# --- 5. Numbers beyond a double, duplicate keys, integers beyond their range
+sed 's/"young": [0-9.e+]*/"young": 1e400/' "$in/good.json" > "$in/young.json"
+bad "young 1e400" "young.json:[0-9]+:[0-9]+: materials\.[a-z]+\.young: invalid JSON: number overflow" \
+  run "$in/young.json" --out "$out/r"
+sed 's/"duration": /"duration": 1, "duration": /' "$in/good.json" > "$in/dup.json"
+bad "duplicate key" "dup.json:.*duration: invalid JSON: duplicate key" run "$in/dup.json" --out "$out/r"
+variant every "s['record'] = {'force_on': s['bodies'][0]['name'], 'every': 18446744073709551615}"
+bad "record.every 2^64-1" "every.json: record\.every: must lie in \[1, 1000000000\]" run "$in/every.json" --out "$out/r"
+
+# --- 2 / 10. Only regular files are read: a FIFO, /dev/zero, /dev/urandom, a folder, NUL bytes
+mkfifo "$in/fifo.json"
+bad "FIFO scene" "fifo.json: not a regular file" run "$in/fifo.json" --out "$out/r"
+bad "/dev/zero scene" "/dev/zero: not a regular file" run /dev/zero --out "$out/r"
+bad "/dev/urandom scene" "/dev/urandom: not a regular file" run /dev/urandom --out "$out/r"
+mkdir "$in/folder.json"
+bad "a folder as scene" "folder.json: is a folder" run "$in/folder.json" --out "$out/r"
+printf '\0{"name": "x"}' > "$in/nul.json"
+bad "NUL-led scene" "nul.json:1:1: invalid JSON: a NUL byte" run "$in/nul.json" --out "$out/r"
+truncate -s 65M "$in/big.json"
+bad "65 MiB scene" "big.json: 68157440 bytes, more than the 64 MiB" run "$in/big.json" --out "$out/r"
+bad "FIFO case" "fifo.json: not a regular file" validate "$in/fifo.json" --out "$out/v"
+bad "/dev/zero study" "/dev/zero: not a regular file" study /dev/zero --out "$out/s"
+bad "/dev/zero mesh" "/dev/zero: cannot open file \(missing or not a regular file\)" \
+  mesh /dev/zero --faces 100 --out "$out/m"
+
+# --- 10. Messages that say what is wrong
+variant potential "s['contact'] = {'law': 'potential'}"
+bad "potential law on spheres" "potential.json: contact\.law: \"potential\" acts between meshed bodies, and bodies\[[0-9]\] is a sphere" \
+  run "$in/potential.json" --out "$out/r"
+variant fast "s['bodies'][0]['velocity'] = [0, 0, -1e308]"
+bad "velocity 1e308" "fast.json: bodies\[0\]\.velocity: faster than light \(got \[0,0,-1e\+308\] m/s" run "$in/fast.json" --out "$out/r"
+bad "run on a validation case" "hertz-glass-sphere-plane-1ms.json: this is a validation case .*asperity validate" \
+  run "$case_file" --out "$out/r"
+bad "validate on a scene" "good.json: this is a scene, not a validation case.*asperity run" \
+  validate "$in/good.json" --out "$out/v"
+bad "unknown command" "unknown command \"bogus\"" bogus
+
+# --- 3. Case names: a case writes into --out/cases/NAME, so NAME is a plain unique name
+case_variant() {  # case_variant NAME PYTHON-STATEMENT: $in/cases/NAME.json = the Hertz case, c changed
+  mkdir -p "$in/cases"
+  /usr/bin/python3 - "$case_file" "$in/cases/$1.json" "$2" <<'PY'
+import json, sys
+c = json.load(open(sys.argv[1]))
+exec(sys.argv[3])
+json.dump(c, open(sys.argv[2], "w"))
+PY
+}
+case_variant escape "c['case'] = '../../../escape'"
+bad "case name ../../../escape" "escape.json: case: must not contain a path separator" validate "$in/cases/escape.json" --out "$out/v"
+check "nothing escaped the output folder" test ! -e "$work/escape"
+case_variant absolute "c['case'] = '/tmp/asperity-hostile-escape-$$'"
+bad "absolute case name" "absolute.json: case: must not contain a path separator" validate "$in/cases/absolute.json" --out "$out/v"
+check "nothing written at the absolute path" test ! -e /tmp/asperity-hostile-escape-$$
+case_variant dotdot "c['case'] = '..'"
+bad "case name .." "dotdot.json: case: must not be \"\.\.\"" validate "$in/cases/dotdot.json" --out "$out/v"
+rm -f "$in/cases/"*
+case_variant one "c['case'] = 'same'"
+case_variant two "c['case'] = 'same'"
+bad "two cases of one name" "two.json: case: \"same\" is also the name of .*one.json" validate "$in/cases" --out "$out/v"
+rm -f "$in/cases/"*
+case_variant quantity "c['expected']['peak_forse'] = {'value': 1, 'rel_tol': 0.1, 'why': 'x'}"
+bad "unknown expected quantity" "quantity.json: expected\.peak_forse: not a quantity summary\.json reports \(did you mean \"peak_force\"\?\)" \
+  validate "$in/cases/quantity.json" --out "$out/v"
+rm -f "$in/cases/"*
+
+# --- 5. --out naming a file, /dev/null or ""
+touch "$in/afile"
+bad "run --out an existing file" "--out .*afile: exists and is not a folder" run "$in/good.json" --out "$in/afile"
+bad "run --out /dev/null" "--out /dev/null: exists and is not a folder" run "$in/good.json" --out /dev/null
+bad "run --out \"\"" "--out \"\": must name a folder" run "$in/good.json" --out ""
+bad "run --out under a file" "--out .*afile/x: .*afile is not a folder" run "$in/good.json" --out "$in/afile/x"
+bad "validate --out /dev/null" "--out /dev/null: exists" validate "$case_file" --out /dev/null
+bad "stability --out \"\"" "--out \"\": must name a folder" stability "$in/good.json" --out ""
+bad "mesh --out a file" "--out .*afile: exists and is not a folder" \
+  mesh "$src/data/meshes/particle-seed3-320.off" --faces 100 --out "$in/afile"
+bad "particle --out a folder" "--out .*in: is a folder" particle --seed 1 --out "$in"
+
+# --- 8. Strict command-line numbers
+for seed in -1 18446744073709551616 99999999999999999999999 "" 1e3 0x10 " 7"; do
+  bad "particle --seed '$seed'" "--seed: must be a whole number from 0 to 18446744073709551615" \
+    particle --seed "$seed" --out "$out/p.off"
+done
+bad "mesh --quality nan" "--quality: must be a finite number" \
+  mesh "$src/data/meshes/particle-seed3-320.off" --quality nan --out "$out/m"
+bad "mesh --faces -5" "--faces: must be a whole number from 0 to 10000000 \(got \"-5\"\)" \
+  mesh "$src/data/meshes/particle-seed3-320.off" --faces -5 --out "$out/m"
+bad "mesh --scale 0" "--scale: must be a finite number > 0 " \
+  mesh "$src/data/meshes/particle-seed3-320.off" --scale 0 --out "$out/m"
+bad "mesh --scale inf" "--scale: must be a finite number" \
+  mesh "$src/data/meshes/particle-seed3-320.off" --scale inf --out "$out/m"
+bad "study --jobs -3" "--jobs: must be a whole number" study "$src/data/study/default.json" -j -3 --out "$out/s"
+
+# --- 5. Mesh headers checked against the file's size before anything is allocated
+printf 'OFF\n2000000000 1 0\n0 0 0\n' > "$in/huge-header.off"
+bad "OFF declaring 2e9 vertices" "huge-header.off: OFF header declares 2000000000 vertices" \
+  mesh "$in/huge-header.off" --faces 100 --out "$out/m"
+{ printf 'OFF\n100000000 4 0\n'; head -c 15000 /dev/zero | tr '\0' ' '; } > "$in/small-1e8.off"
+bad "15 KB OFF declaring 1e8 vertices" "small-1e8.off: OFF header declares 100000000 vertices" \
+  mesh "$in/small-1e8.off" --faces 100 --out "$out/m"
+printf 'OFF\n-4 2 0\n' > "$in/negative.off"
+bad "OFF negative count" "negative.off: OFF header: vertex and face counts must be whole numbers" \
+  mesh "$in/negative.off" --faces 100 --out "$out/m"
+printf 'ply\nformat binary_little_endian 1.0\nelement vertex 1000000000\nproperty float x\nproperty float y\nproperty float z\nelement face 1\nproperty list uchar int vertex_indices\nend_header\n' > "$in/huge.ply"
+bad "PLY declaring 1e9 vertices" "huge.ply: PLY header declares 1000000000 vertices" \
+  mesh "$in/huge.ply" --faces 100 --out "$out/m"
+# A binary STL (84-byte header, 50 bytes per triangle) with a NaN vertex coordinate.
+/usr/bin/python3 - "$in/nan.stl" <<'PY'
+import struct, sys
+tris = [((0, 0, 0), (1, 0, 0), (0, 1, 0)), ((0, 0, 0), (0, 1, 0), (0, 0, 1)),
+        ((0, 0, 0), (0, 0, 1), (1, 0, 0)), ((1, 0, 0), (0, 0, 1), (0, 1, float("nan")))]
+with open(sys.argv[1], "wb") as f:
+    f.write(b"\0" * 80 + struct.pack("<I", len(tris)))
+    for t in tris:
+        f.write(struct.pack("<3f", 0, 0, 0))
+        for v in t:
+            f.write(struct.pack("<3f", *v))
+        f.write(b"\0\0")
+PY
+bad "binary STL with a NaN vertex" "nan.stl: 1 vertices with NaN or infinite coordinates" \
+  mesh "$in/nan.stl" --faces 4 --out "$out/m"
+
+# --- 5 / 9. Study: a bad resolution is exit 2 with nothing run; an exit 2 leaves no study.lock
+/usr/bin/python3 - "$src/data/study/default.json" "$in/odd.json" "$src" <<'PY'
+import json, sys
+s = json.load(open(sys.argv[1]))
+s["particles"]["set"] = sys.argv[3] + "/data/particles/set.json"
+s["resolutions"] = [101, 250]
+json.dump(s, open(sys.argv[2], "w"))
+PY
+bad "study resolution 101" "odd.json: resolutions\[0\]: must be an even triangle count" study "$in/odd.json" --out "$out/s"
+printf 'solid open\nfacet normal 0 0 1\nouter loop\nvertex 0 0 0\nvertex 1 0 0\nvertex 0 1 0\nendloop\nendfacet\nendsolid open\n' > "$in/open.stl"
+printf '{"particles": {"meshes": [{"file": "open.stl"}]}, "resolutions": [100], "models": ["fem"]}' > "$in/openstudy.json"
+mkdir -p "$work/s-lock"
+(cd "$cwd" && timeout "$limit" "$bin" study "$in/openstudy.json" --out "$work/s-lock" -q) 2> "$work/stderr"
+rc=$?
+check "study of an open mesh exits 2 (got $rc: $(head -c 300 "$work/stderr"))" test "$rc" -eq 2
+check "exit 2 removes study.lock" test ! -e "$work/s-lock/study.lock"
+
+# --- 6. report on a damaged study folder: exit 2, one line, no traceback, nothing written
+damaged() {  # damaged NAME SHELL-COMMAND (run inside a copy of the committed study tables)
+  rm -rf "$in/study-$1"
+  mkdir -p "$in/study-$1"
+  cp "$src"/reports/study/*.csv "$src"/reports/study/guidelines.json "$in/study-$1/"
+  cp "$src"/reports/study/study_summary.json "$in/study-$1/" 2>/dev/null ||
+    printf '%s' '{}' > "$in/study-$1/study_summary.json"
+  (cd "$in/study-$1" && eval "$2")
+}
+if [ -f "$src/reports/study/study_summary.json" ]; then
+  damaged binary 'head -c 3000 /dev/urandom > cases.csv'
+  bad "report: binary cases.csv" "study-binary/cases.csv: (binary content|not UTF-8)" report "$in/study-binary" --out "$out/rep"
+  damaged empty ': > cases.csv'
+  bad "report: empty cases.csv" "study-empty/cases.csv: empty" report "$in/study-empty" --out "$out/rep"
+  damaged truncated 'head -c 2000 cases.csv > t && mv t cases.csv'
+  bad "report: truncated cases.csv" "study-truncated/cases.csv: line [0-9]+: [0-9]+ fields" report "$in/study-truncated" --out "$out/rep"
+  damaged cell 'sed -i "2s/,ok,[0-9.e-]*,/,ok,abc,/" cases.csv'
+  bad "report: non-numeric cell" "study-cell/cases.csv: line 2: peak_force: not a number" report "$in/study-cell" --out "$out/rep"
+  damaged summary 'head -c 100 study_summary.json > t && mv t study_summary.json'
+  bad "report: corrupt study_summary.json" "study-summary/study_summary.json: invalid JSON" report "$in/study-summary" --out "$out/rep"
+  damaged guidelines 'printf "{\"a\": [1, 2" > guidelines.json'
+  bad "report: corrupt guidelines.json" "study-guidelines/guidelines.json: invalid JSON" report "$in/study-guidelines" --out "$out/rep"
+fi
+
+# --- 9. Leftovers: a failed write leaves no *.partial-PID; an interrupted run leaves nothing
+# that looks complete (an earlier run's outputs in the folder go before the run starts).
+mkdir -p "$work/fail/summary.json"  # a folder where the summary goes: the final rename fails
+(cd "$cwd" && timeout "$limit" "$bin" run "$in/good.json" --out "$work/fail" -q) 2> /dev/null
+check "failed write: no *.partial-* file" test -z "$(find "$work/fail" -name '*.partial-*')"
+"$bin" run "$in/good.json" --out "$work/intr" -q
+check "a first run completes" test -s "$work/intr/summary.json"
+variant long "s['duration'] = 50.0; s['dt'] = 1e-7; s['allow_unsafe_dt'] = True; s['record'] = {'force_on': s['bodies'][0]['name'], 'every': 100000}"
+for sig in INT TERM; do
+  "$bin" run "$in/long.json" --out "$work/intr" -q 2> /dev/null &
+  pid=$!
+  sleep 1.5
+  kill -s "$sig" "$pid"
+  wait "$pid"
+  rc=$?
+  check "SIG$sig stops the run (exit $rc)" test "$rc" -ge 128
+  check "SIG$sig: no summary.json (the earlier run's is gone)" test ! -e "$work/intr/summary.json"
+  check "SIG$sig: no curves from the earlier run" test ! -e "$work/intr/force.csv"
+  check "SIG$sig: no *.partial-* file" test -z "$(find "$work/intr" -name '*.partial-*')"
+done
+# An interrupted study removes its lock (its finished cases stay: it resumes).
+/usr/bin/python3 - "$src/data/study/default.json" "$in/study-int.json" "$src" <<'PY'
+import json, sys
+s = json.load(open(sys.argv[1]))
+s["particles"]["set"] = sys.argv[3] + "/data/particles/set.json"
+json.dump(s, open(sys.argv[2], "w"))
+PY
+"$bin" study "$in/study-int.json" --out "$work/study-int" -q -j 1 2> /dev/null &
+pid=$!
+sleep 2
+check "the study holds its lock while running" test -e "$work/study-int/study.lock"
+kill -s INT "$pid"
+wait "$pid"
+rc=$?
+check "SIGINT stops the study (exit $rc)" test "$rc" -ge 128
+check "SIGINT removes study.lock" test ! -e "$work/study-int/study.lock"
+check "SIGINT: no study_summary.json" test ! -e "$work/study-int/study_summary.json"
+check "SIGINT: no *.partial-* file" test -z "$(find "$work/study-int" -name '*.partial-*')"
+
+echo "$passed passed, $failed failed"
+test "$failed" -eq 0
