@@ -290,23 +290,6 @@ void volume_contact_forces(World& w) {
   w.overlaps = std::move(now);
 }
 
-void internal_forces(World& w, double dt) {
-  double elastic = 0;
-  for (const fem::TetElements& e : w.elements) {
-    const fem::InternalForceResult r = fem::add_internal_forces(e, w.x, w.v, w.f, w.want_energy);
-    elastic += r.energy;
-    w.dissipated -= r.damping_power * dt;
-    if (r.inverted >= 0 && w.failure.empty()) {
-      const int body = w.node_body[e.tets(0, r.inverted)];
-      std::ostringstream s;
-      s << "body \"" << w.bodies[body].name << "\" element " << r.inverted
-        << " inverted (J = " << r.inverted_j << ") at t = " << w.time << " s";
-      w.failure = s.str();
-    }
-  }
-  if (w.want_energy) w.elastic_energy = elastic;
-}
-
 // Rigid bodies: total force and torque about the centre from their nodes' forces.
 void reduce_rigid(World& w) {
   for (RigidBody& rb : w.rigid) {
