@@ -23,6 +23,7 @@
 #include "contact/restitution_damping.hpp"
 #include "core/error.hpp"
 #include "io/json_file.hpp"
+#include "peers/yade_polyhedra_input.hpp"
 #include "run/impact_measures.hpp"
 #include "run/rebound.hpp"
 #include "run/run_scene.hpp"
@@ -62,6 +63,10 @@ const char* law_key(scene::ContactLaw law) {
       return "linear";
     case scene::ContactLaw::potential:
       return "potential";
+    case scene::ContactLaw::volume_hertz:
+      return "volume-hertz";
+    case scene::ContactLaw::volume_linear:
+      return "volume-linear";
   }
   return "?";
 }
@@ -69,6 +74,14 @@ const char* law_key(scene::ContactLaw law) {
 // What scene_to_yade.py reads: the scene with everything asperity derives from it resolved.
 Json yade_input(const scene::SceneDef& s, double dt, long steps) {
   const std::string where = s.file.string() + ": ";
+  if (s.contact.law == scene::ContactLaw::volume_linear) {
+    return peers::yade_polyhedra_input(s, dt, steps);
+  }
+  if (s.contact.law == scene::ContactLaw::volume_hertz) {
+    throw InputError(where +
+                     "contact.law: \"volume-hertz\" has no YADE counterpart; cross-check rigid "
+                     "polyhedra with \"volume-linear\" (YADE's volumetric law) and a kv");
+  }
   Json j;
   j["scene"] = s.name;
   j["law"] = law_key(s.contact.law);
@@ -263,6 +276,17 @@ run::RunResult yade_result(const scene::SceneDef& s, const Json& raw,
     run::add_rebound_measures(s, *impact, motion(s.record.body), motion(impact->partner), ended > 0,
                               j);
   }
+  if (const Json& f = raw.at("final").at(s.bodies[s.record.body].name);
+      std::holds_alternative<scene::MeshShape>(s.bodies[s.record.body].shape)) {
+    // A rigid polyhedron's rebound: its final speed and spin (run_fdem reports the same keys).
+    auto v3 = [](const Json& v) {
+      return Vec3(v[0].get<double>(), v[1].get<double>(), v[2].get<double>());
+    };
+    j["final_velocity"] = f.at("velocity");
+    j["final_angular_velocity"] = f.at("angular_velocity");
+    j["final_speed"] = v3(f.at("velocity")).norm();
+    j["final_spin"] = v3(f.at("angular_velocity")).norm();
+  }
   j["dt"] = raw.at("dt");
   j["steps"] = raw.at("steps");
   j["simulated_time"] = raw.at("dt").get<double>() * raw.at("steps").get<double>();
@@ -299,6 +323,10 @@ int cmd_crosscheck(const fs::path& scene_file, const fs::path& out, const std::s
   }
   if (!fs::is_regular_file(script))
     throw InputError("crosscheck: " + script.string() + ": YADE translator script not found");
+
+  // A scene YADE cannot carry (a law without a counterpart, a non-convex polyhedron) is refused
+  // before anything runs or is written.
+  (void)yade_input(s, 0.0, 0);
 
   // Nothing from an earlier cross-check may be mistaken for this one's.
   fs::create_directories(out / "yade");
@@ -351,7 +379,7 @@ int cmd_crosscheck(const fs::path& scene_file, const fs::path& out, const std::s
   for (const char* q :
        {"max_overlap", "first_contact_time", "restitution", "tangential_restitution", "slip_ratio",
         "spin_out", "rebound_angle_deg", "slip_velocity_out", "normal_velocity_out",
-        "angular_velocity_change", "tangential_speed_out"}) {
+        "angular_velocity_change", "tangential_speed_out", "final_speed", "final_spin"}) {
     if (a.summary.contains(q) || y.summary.contains(q)) more[q] = compare(a.summary, y.summary, q);
   }
   c["other"] = more;
@@ -360,6 +388,18 @@ int cmd_crosscheck(const fs::path& scene_file, const fs::path& out, const std::s
   c["cpu_seconds"] = {{"asperity", cpu_a},
                       {"yade", cpu_y},
                       {"ratio_asperity_over_yade", cpu_y > 0 ? Json(cpu_a / cpu_y) : Json()}};
+  // The polyhedra path times each of YADE's steps: free flight, in contact, the first and last
+  // contact steps (where YADE's intersection is known to be slowest).
+  if (raw.contains("step_seconds")) c["yade_step_seconds"] = raw.at("step_seconds");
+  {
+    const auto& prof = a.summary.contains("profile") ? a.summary.at("profile") : Json();
+    if (prof.is_object() && a.summary.contains("steps")) {
+      c["asperity_step_seconds"] = {
+          {"mean", cpu_a / std::max(1.0, a.summary.at("steps").get<double>())},
+          {"contact_phase_total", prof.value("contact", 0.0)},
+          {"broad_phase_total", prof.value("broad_phase", 0.0)}};
+    }
+  }
   double stiff = 0;
   for (const auto& k : raw.at("stiffness")) stiff = std::max(stiff, k.at("rel_diff").get<double>());
   c["stiffness_rel_diff_max"] = stiff;
@@ -395,8 +435,9 @@ void add_crosscheck_command(CLI::App& app, Action& action) {
   auto args = std::make_shared<Args>();
   auto* cc = app.add_subcommand(
       "crosscheck",
-      "Run a scene (or a validation case's scene) in asperity and in YADE: writes "
-      "DIR/asperity/, DIR/yade/, DIR/comparison.json");
+      "Run a scene (or a validation case's scene) in asperity and in YADE: rigid spheres, "
+      "planes and boxes, or rigid convex polyhedra under volume-linear (YADE's Polyhedra); "
+      "writes DIR/asperity/, DIR/yade/, DIR/comparison.json");
   cc->add_option("scene", args->scene, "Scene file, or a validation case file")->required();
   cc->add_option("--out", args->out, "Output folder")->required();
   cc->add_option("--yade", args->yade, "YADE executable (default: yade on PATH)");

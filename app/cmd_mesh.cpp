@@ -1,6 +1,6 @@
-// `asperity mesh INPUT --faces N --out DIR`: check and repair a surface mesh, simplify it to
-// exactly N triangles, tetrahedralize it keeping them; DIR/surface.off, DIR/tets.vtk,
-// DIR/mesh.json.
+// `asperity mesh INPUT --faces N --out DIR [--element-size H]`: check and repair a surface mesh,
+// simplify it to exactly N triangles, tetrahedralize it keeping them (bisected in their planes to
+// H when given); DIR/surface.off, DIR/tets.vtk, DIR/mesh.json.
 #include <filesystem>
 #include <iostream>
 #include <memory>
@@ -21,6 +21,8 @@ struct MeshArgs {
   double scale = 1.0;
   double quality = geometry::TetOptions{}.radius_edge_ratio;
   double min_dihedral = 0;
+  double element_size = 0;
+  bool element_size_given = false;
   bool no_tets = false, quiet = false;
 };
 
@@ -31,6 +33,14 @@ int cmd_mesh(const MeshArgs& a) {
   options.tetrahedralize = !a.no_tets;
   options.tet.radius_edge_ratio = a.quality;
   options.tet.min_dihedral_deg = a.min_dihedral;
+  if (a.element_size_given) {
+    if (!(a.element_size > 0)) {  // NaN too
+      throw InputError(a.input.string() + ": --element-size: " + std::to_string(a.element_size) +
+                       " is not a positive length in metres");
+    }
+    options.tet.element_size.size = a.element_size;
+    options.element_size_key = a.input.string() + ": --element-size";
+  }
   check_out_folder(a.out);
   const geometry::PreparedParticle p = geometry::prepare_particle(a.input, options);
   geometry::write_prepared_particle(p, a.out);
@@ -42,7 +52,8 @@ int cmd_mesh(const MeshArgs& a) {
               << p.change.volume_change_rel << ", max asperity " << p.change.max_asperity_rel_source
               << " -> " << p.change.max_asperity_rel;
     if (!a.no_tets) {
-      std::cerr << ", " << p.quality.tets << " tets (min dihedral " << p.quality.min_dihedral_deg
+      std::cerr << ", " << p.quality.tets << " tets (edges " << p.quality.smallest_edge << " to "
+                << p.quality.longest_edge << " m, min dihedral " << p.quality.min_dihedral_deg
                 << " deg)";
     }
     std::cerr << " -> " << a.out.string() << "\n";
@@ -73,9 +84,17 @@ void add_mesh_command(CLI::App& app, Action& action) {
   cmd->add_option("--min-dihedral", args->min_dihedral,
                   "TetGen smallest dihedral angle asked for, degrees")
       ->check(real_number(0, 70, false));
+  auto* element_size = cmd->add_option(
+      "--element-size", args->element_size,
+      "Target tetrahedron edge length, m (after --scale): the surface triangles are "
+      "bisected in their own planes to it and the interior filled with quality "
+      "tetrahedra (default: the surface triangles are the elements' faces)");
   cmd->add_flag("--no-tets", args->no_tets, "Surface only: no tetrahedralization");
   cmd->add_flag("-q,--quiet", args->quiet, "No summary line on stderr");
-  cmd->callback([args, &action] { action = [args] { return cmd_mesh(*args); }; });
+  cmd->callback([args, element_size, &action] {
+    args->element_size_given = element_size->count() > 0;
+    action = [args] { return cmd_mesh(*args); };
+  });
 }
 
 }  // namespace asperity::app

@@ -5,11 +5,16 @@
 #include <algorithm>
 #include <array>
 #include <cmath>
+#include <limits>
 #include <map>
 #include <sstream>
+#include <tuple>
 
 #include "contact/munjiza_potential.hpp"
+#include "contact/overlap_volume.hpp"
 #include "contact/tangential_spring.hpp"
+#include "contact/volume_hertz.hpp"
+#include "contact/volume_linear.hpp"
 #include "core/error.hpp"
 #include "core/ticks.hpp"
 #include "fdem/broad_phase.hpp"
@@ -182,12 +187,132 @@ void internal_forces(World& w, double dt) {
   if (w.want_energy) w.elastic_energy = elastic;
 }
 
+// A reference point of a body near its contacts: a moving body's centre, else its first node.
+Vec3 reference_point(const World& w, int body) {
+  const Body& b = w.bodies[body];
+  if (b.kind == BodyKind::rigid) return w.rigid[b.rigid].centre;
+  return w.x.col(b.node_begin);
+}
+
+BodyOverlap& overlap_of(World& w, std::vector<BodyOverlap>& now, int a, int b) {
+  for (BodyOverlap& o : now) {
+    if (o.a == a && o.b == b) return o;
+  }
+  BodyOverlap o{.a = a, .b = b};
+  // The origin of the integrals: the moving body's centre (near the contact, unlike a plane's
+  // far-away slab nodes), so the terms |x − o| · area stay of the size of the bodies.
+  o.origin = reference_point(w, w.bodies[a].kind == BodyKind::fixed ? b : a);
+  for (const BodyOverlap& old : w.overlaps) {
+    if (old.a == a && old.b == b) o.energy = old.energy, o.volume = old.volume, o.slope = old.slope;
+  }
+  now.push_back(o);
+  return now.back();
+}
+
+// Clips the surface triangles owned by tetrahedron `owner` against tetrahedron `target` into
+// `side`.
+void clip_owned_faces(const World& w, int owner, const contact::TetNodes& target,
+                      const Vec3& origin, contact::OverlapSide& side) {
+  for (int k = w.tet_faces_begin[owner]; k < w.tet_faces_begin[owner + 1]; ++k) {
+    const auto f = w.face_outward.col(w.tet_faces[k]);
+    contact::clip_triangle_in_tet({w.x.col(f[0]), w.x.col(f[1]), w.x.col(f[2])}, target, origin,
+                                  side);
+  }
+}
+
+// Volume laws: every candidate pair of tetrahedra adds its clipped surface integrals to its body
+// pair; each body pair in contact then gets F_A = −s S_A with s = W'(V) (volume-hertz) or
+// k_v V / |S_A| (volume-linear), and the torque −s M_A about A's centre (volume-hertz: the exact
+// gradient) or that of F_A at the overlap's centroid (volume-linear, as YADE applies it)
+// (contact/overlap_volume.hpp).
+void volume_contact_forces(World& w) {
+  w.contact_energy = 0;
+  w.contacts.reset(static_cast<int>(w.bodies.size()));
+  w.penetration = 0;
+  for (RigidBody& rb : w.rigid) rb.volume_force.setZero(), rb.volume_torque.setZero();
+  std::vector<BodyOverlap> now;
+  for (const TetPair& p : w.pairs) {
+    const contact::TetNodes a = gather(w, p.a), b = gather(w, p.b);
+    if (!boxes_overlap(a, b)) continue;
+    ++w.contact_evaluations;
+    int ba = w.surface_tet_body[p.a], bb = w.surface_tet_body[p.b];
+    int ta = p.a, tb = p.b;
+    if (ba > bb) std::swap(ba, bb), std::swap(ta, tb);
+    BodyOverlap& o = overlap_of(w, now, ba, bb);
+    clip_owned_faces(w, ta, ta == p.a ? b : a, o.origin, o.side_a);
+    clip_owned_faces(w, tb, tb == p.b ? a : b, o.origin, o.side_b);
+  }
+  for (BodyOverlap& o : now) {
+    const contact::Overlap ov = contact::combine(o.side_a, o.side_b, o.origin);
+    const double area = ov.area.norm();
+    if (!(ov.volume > 0) || !(area > 0)) {
+      o.energy = 0, o.volume = 0, o.slope = 0;
+      continue;
+    }
+    ++w.contacts_touching;
+    const Body &body_a = w.bodies[o.a], &body_b = w.bodies[o.b];
+    double slope = 0;
+    if (w.law == ContactLaw::volume_hertz) {
+      const double c = contact::volume_hertz_coefficient(
+          effective_young(body_a.material, body_b.material),
+          contact::volume_hertz_radius(body_a.radius, body_b.radius));
+      const contact::VolumeEnergy e = contact::volume_hertz(ov.volume, c);
+      slope = e.slope;
+      o.energy = e.energy;
+    } else {
+      slope = w.kv * ov.volume / area;  // |F| = k_v V (contact/volume_linear.hpp)
+      // The force is −s ∇V, so its work is ∫ s dV along any path: trapezoidal in V.
+      o.energy += 0.5 * (slope + o.slope) * (ov.volume - o.volume);
+    }
+    o.volume = ov.volume;
+    o.slope = slope;
+    const Vec3 force_a = -slope * o.side_a.area;
+    const Vec3 force_b = -slope * o.side_b.area;
+    for (const auto& [body, side, force] :
+         {std::tuple{o.a, &o.side_a, force_a}, std::tuple{o.b, &o.side_b, force_b}}) {
+      const Body& bd = w.bodies[body];
+      if (bd.kind != BodyKind::rigid) continue;
+      RigidBody& rb = w.rigid[bd.rigid];
+      rb.volume_force += force;
+      if (w.law == ContactLaw::volume_hertz) {
+        // The gradient of W under rotation: −W' M(c), M(c) = M(o) − (c − o) × S.
+        rb.volume_torque -= slope * (side->moment - (rb.centre - o.origin).cross(side->area));
+      } else {
+        // YADE's volumetric law applies the force at the overlap's centroid.
+        rb.volume_torque += (ov.centroid - rb.centre).cross(force);
+      }
+    }
+    w.contact_energy += o.energy;
+    // The overlap's mean depth V/|S| (m) is its signed overlap: linear in the approach for a
+    // sphere, a vertex, an edge and a face alike, so the contact's start and end interpolate well.
+    w.contacts.add(o.a, o.b, force_a, force_a, ov.volume / area);
+  }
+  w.overlaps = std::move(now);
+}
+
+void internal_forces(World& w, double dt) {
+  double elastic = 0;
+  for (const fem::TetElements& e : w.elements) {
+    const fem::InternalForceResult r = fem::add_internal_forces(e, w.x, w.v, w.f, w.want_energy);
+    elastic += r.energy;
+    w.dissipated -= r.damping_power * dt;
+    if (r.inverted >= 0 && w.failure.empty()) {
+      const int body = w.node_body[e.tets(0, r.inverted)];
+      std::ostringstream s;
+      s << "body \"" << w.bodies[body].name << "\" element " << r.inverted
+        << " inverted (J = " << r.inverted_j << ") at t = " << w.time << " s";
+      w.failure = s.str();
+    }
+  }
+  if (w.want_energy) w.elastic_energy = elastic;
+}
+
 // Rigid bodies: total force and torque about the centre from their nodes' forces.
 void reduce_rigid(World& w) {
   for (RigidBody& rb : w.rigid) {
     const Body& b = w.bodies[rb.body];
-    rb.force.setZero();
-    rb.torque.setZero();
+    rb.force = rb.volume_force;
+    rb.torque = rb.volume_torque;
     for (int i = b.node_begin; i < b.node_end; ++i) {
       rb.force += w.f.col(i);
       rb.torque += (w.x.col(i) - rb.centre).cross(w.f.col(i));
@@ -198,7 +323,11 @@ void reduce_rigid(World& w) {
 void compute_forces(World& w, double dt) {
   w.f.setZero();
   const std::uint64_t t0 = ticks();
-  contact_forces(w, dt);
+  if (w.law == ContactLaw::potential) {
+    contact_forces(w, dt);
+  } else {
+    volume_contact_forces(w);
+  }
   if (w.keep_contact_force) w.f_contact = w.f;  // f held the contact forces only, so far
   const std::uint64_t t1 = ticks();
   internal_forces(w, dt);
@@ -241,7 +370,8 @@ void drift(World& w, double dt) {
 // contact time step.
 struct Face {
   int body;
-  int nodes[3];
+  int nodes[3];     // sorted
+  int oriented[3];  // as the surface lists it (outward)
   double area, height;
 };
 
@@ -250,6 +380,8 @@ struct SurfaceLists {
   std::vector<int> tet_nodes, tet_body;  // surface-adjacent tetrahedra (global nodes), owner
   std::vector<double> tet_height;        // largest sub-tetrahedron height of each
   std::vector<Face> faces;
+  std::vector<int> face_owner;   // per face: its tetrahedron among the contact tetrahedra
+  std::vector<int> contact_tet;  // the current body's tetrahedra → contact tetrahedron (or −1)
 };
 
 void allocate_nodes(World& w, const WorldDef& def) {
@@ -278,7 +410,11 @@ void check_mesh(const BodyDef& d, const std::string& what) {
 // (deformable) or its rigid state (rigid).
 Body add_body(World& w, const BodyDef& d, int bi, int offset, const std::string& what) {
   const int nn = static_cast<int>(d.mesh.nodes.cols());
-  Body body{.name = d.name, .kind = d.kind, .node_begin = offset, .node_end = offset + nn};
+  Body body{.name = d.name,
+            .kind = d.kind,
+            .node_begin = offset,
+            .node_end = offset + nn,
+            .material = d.material};
   w.x.middleCols(offset, nn) = d.mesh.nodes;
   for (int i = offset; i < offset + nn; ++i) w.node_body[i] = bi;
   const Eigen::Matrix4Xi tets = d.mesh.tets.array() + offset;
@@ -295,6 +431,9 @@ Body add_body(World& w, const BodyDef& d, int bi, int offset, const std::string&
   Vec3 centre;
   Mat3 inertia;
   mass_properties(d.mesh, d.material.density, body.mass, centre, inertia);
+  body.radius = d.kind == BodyKind::fixed
+                    ? std::numeric_limits<double>::infinity()
+                    : contact::equivalent_radius(body.mass / d.material.density);
   if (d.kind != BodyKind::fixed) {
     for (int i = offset; i < offset + nn; ++i) w.mass[i] = lumped[i];
   }
@@ -320,14 +459,20 @@ Body add_body(World& w, const BodyDef& d, int bi, int offset, const std::string&
   return body;
 }
 
-// Surface-adjacent tetrahedra: those with a node on the surface, with their largest
+// Contact tetrahedra: those with a node on the surface (every tetrahedron under a volume law,
+// whose overlap integrals clip the surface triangles they own), with their largest
 // sub-tetrahedron height.
-void add_surface_tets(SurfaceLists& s, const BodyDef& d, int bi, int offset) {
+void add_surface_tets(SurfaceLists& s, const BodyDef& d, int bi, int offset, bool volume_law) {
+  s.contact_tet.assign(static_cast<std::size_t>(d.mesh.tets.cols()), -1);
   std::vector<std::uint8_t> on_surface(static_cast<std::size_t>(d.mesh.nodes.cols()), 0);
   for (Eigen::Index k = 0; k < d.mesh.surface.size(); ++k) on_surface[d.mesh.surface.data()[k]] = 1;
   for (Eigen::Index k = 0; k < d.mesh.tets.cols(); ++k) {
     const auto t = d.mesh.tets.col(k);
-    if (!(on_surface[t[0]] || on_surface[t[1]] || on_surface[t[2]] || on_surface[t[3]])) continue;
+    if (!(volume_law || on_surface[t[0]] || on_surface[t[1]] || on_surface[t[2]] ||
+          on_surface[t[3]])) {
+      continue;
+    }
+    s.contact_tet[static_cast<std::size_t>(k)] = static_cast<int>(s.tet_body.size());
     for (int i = 0; i < 4; ++i) s.tet_nodes.push_back(t[i] + offset);
     s.tet_body.push_back(bi);
     // h_m = 3V/(4 A_m): the largest belongs to the smallest face.
@@ -373,8 +518,11 @@ void add_surface_faces(SurfaceLists& s, const BodyDef& d, int bi, int offset,
     const auto t = d.mesh.tets.col(it->second);
     const double v = tet_volume(d.mesh.nodes.col(t[0]), d.mesh.nodes.col(t[1]),
                                 d.mesh.nodes.col(t[2]), d.mesh.nodes.col(t[3]));
+    s.face_owner.push_back(s.contact_tet[static_cast<std::size_t>(it->second)]);
     s.faces.push_back({.body = bi,
                        .nodes = {key[0] + offset, key[1] + offset, key[2] + offset},
+                       .oriented = {d.mesh.surface(0, k) + offset, d.mesh.surface(1, k) + offset,
+                                    d.mesh.surface(2, k) + offset},
                        .area = area,
                        .height = 0.75 * v / area});
   }
@@ -408,6 +556,7 @@ double contact_skin(const World& w, const std::vector<Face>& faces) {
 
 void set_face_stiffness(World& w, const std::vector<Face>& faces) {
   w.face_nodes.resize(3, static_cast<Eigen::Index>(faces.size()));
+  w.face_outward.resize(3, static_cast<Eigen::Index>(faces.size()));
   w.face_stiffness.resize(faces.size());
   std::vector<double> h_min(w.bodies.size(), 1e300);  // smallest height on any other body
   for (const Face& f : faces) {
@@ -418,10 +567,30 @@ void set_face_stiffness(World& w, const std::vector<Face>& faces) {
   for (std::size_t k = 0; k < faces.size(); ++k) {
     const Face& f = faces[k];
     w.face_nodes.col(static_cast<Eigen::Index>(k)) << f.nodes[0], f.nodes[1], f.nodes[2];
+    w.face_outward.col(static_cast<Eigen::Index>(k)) << f.oriented[0], f.oriented[1],
+        f.oriented[2];
     // Stiffness of the face pressed into another body: the overlap A·d sits in this face's
     // sub-tetrahedron and in the other body's, ∇φ = 1/height in each, so dF/dd = p A (1/h + 1/h').
     const double other = h_min[f.body] < 1e299 ? 1.0 / h_min[f.body] : 0.0;
     w.face_stiffness[k] = w.penalty * f.area * (1.0 / f.height + other);
+  }
+}
+
+// Surface triangles by owning contact tetrahedron (CSR), for the volume laws' clipping.
+void index_faces_by_tet(World& w, const std::vector<int>& face_owner) {
+  w.tet_faces_begin.assign(w.surface_tet_body.size() + 1, 0);
+  for (const int t : face_owner) {
+    if (t >= 0) ++w.tet_faces_begin[static_cast<std::size_t>(t) + 1];
+  }
+  for (std::size_t k = 1; k < w.tet_faces_begin.size(); ++k) {
+    w.tet_faces_begin[k] += w.tet_faces_begin[k - 1];
+  }
+  w.tet_faces.resize(static_cast<std::size_t>(w.tet_faces_begin.back()));
+  std::vector<int> fill(w.tet_faces_begin.begin(), w.tet_faces_begin.end() - 1);
+  for (std::size_t f = 0; f < face_owner.size(); ++f) {
+    const int t = face_owner[f];
+    if (t >= 0) w.tet_faces[static_cast<std::size_t>(fill[static_cast<std::size_t>(t)]++)] =
+        static_cast<int>(f);
   }
 }
 
@@ -435,13 +604,17 @@ World make_world(const WorldDef& def) {
   allocate_nodes(w, def);
   SurfaceLists surface;
   int offset = 0;
+  const bool volume_law = def.contact.law != ContactLaw::potential;
   for (std::size_t bi = 0; bi < def.bodies.size(); ++bi) {
     const BodyDef& d = def.bodies[bi];
     const std::string what = "body \"" + d.name + "\"";
     const int body = static_cast<int>(bi);
     check_mesh(d, what);
+    if (volume_law && d.kind == BodyKind::deformable) {
+      throw InputError(what + ": the volume contact laws are for rigid and fixed bodies only");
+    }
     w.bodies.push_back(add_body(w, d, body, offset, what));
-    add_surface_tets(surface, d, body, offset);
+    add_surface_tets(surface, d, body, offset, volume_law);
     add_surface_faces(surface, d, body, offset, what);
     offset += static_cast<int>(d.mesh.nodes.cols());
   }
@@ -451,6 +624,12 @@ World make_world(const WorldDef& def) {
   w.surface_tet_height = std::move(surface.tet_height);
   w.penalty = contact_penalty(def);
   w.friction = def.contact.friction;
+  w.law = def.contact.law;
+  w.kv = def.contact.kv;
+  if (w.law == ContactLaw::volume_linear && !(w.kv > 0)) {
+    throw InputError("contact: volume-linear needs a stiffness kv > 0 (N/m³)");
+  }
+  index_faces_by_tet(w, surface.face_owner);
   w.skin = contact_skin(w, surface.faces);
   set_face_stiffness(w, surface.faces);
 

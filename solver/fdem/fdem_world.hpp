@@ -8,6 +8,7 @@
 
 #include <Eigen/Core>
 
+#include "contact/overlap_volume.hpp"
 #include "core/body_contacts.hpp"
 #include "core/energy.hpp"
 #include "core/material.hpp"
@@ -34,8 +35,15 @@ struct BodyDef {
   double damping_ratio = 0;
 };
 
-// Penalty contact parameters (contact/munjiza_potential.hpp).
+// How bodies touch: Munjiza's penalty potential between tetrahedra (every body kind), or an energy
+// of the overlap volume between rigid and fixed polyhedra (contact/volume_hertz.hpp,
+// contact/volume_linear.hpp, geometry in contact/overlap_volume.hpp).
+enum class ContactLaw : std::uint8_t { potential, volume_hertz, volume_linear };
+
+// Contact parameters.
 struct ContactDef {
+  ContactLaw law = ContactLaw::potential;
+  double kv = 0;  // volume_linear: N/m³
   // p = alpha · E (E the largest Young's modulus among the bodies that are not fixed) unless
   // `penalty` > 0.
   // α = 10: the penetration of a layer of elements pressed together is E/p = 1/10 of their own
@@ -65,6 +73,10 @@ struct Body {
   int elements = -1;                 // deformable: index into World::elements
   int rigid = -1;                    // rigid: index into World::rigid
   double mass = 0;                   // kg (exact, from the tetrahedra)
+  Material material;
+  // Volume laws: radius of the sphere of the body's volume, m (infinite for a fixed body), which
+  // sets the pair's R* (contact/volume_hertz.hpp).
+  double radius = 0;
 };
 
 // 6-DOF state of a rigid polyhedron; its nodes follow x = c + R r.
@@ -76,6 +88,8 @@ struct RigidBody {
   Mat3 inertia_body = Mat3::Identity();  // about the centre, body frame, kg·m²
   Eigen::Matrix3Xd r_body;               // node offsets in the body frame
   Vec3 force = Vec3::Zero(), torque = Vec3::Zero();
+  // Volume laws act on the body as a whole (force, and torque about the centre), not on nodes.
+  Vec3 volume_force = Vec3::Zero(), volume_torque = Vec3::Zero();
   Vec3 centre_initial = Vec3::Zero();
 };
 
@@ -86,6 +100,18 @@ struct TetPair {
   Vec3 spring = Vec3::Zero();
 };
 
+// Volume laws: the overlap integrals of one pair of bodies, gathered over their candidate
+// tetrahedron pairs during a step (contact/overlap_volume.hpp).
+struct BodyOverlap {
+  int a = -1, b = -1;  // bodies, a < b
+  Vec3 origin = Vec3::Zero();
+  contact::OverlapSide side_a, side_b;  // ∂A ∩ B and ∂B ∩ A
+  double energy = 0;                    // J: W(V), or volume-linear's work done so far
+  double volume = 0;                    // V at the last step, m³
+  double slope = 0;                     // s = |F| / |S| at the last step, Pa
+};
+
+#include "contact/overlap_volume.hpp"
 struct World {
   // Nodes, structure of arrays. Fixed nodes have mass 0 and inverse mass 0.
   Eigen::Matrix3Xd x, v, f;    // m, m/s, N (contact + internal, without gravity)
@@ -102,8 +128,9 @@ struct World {
   std::vector<RigidBody> rigid;
   Vec3 gravity = Vec3::Zero();
 
-  // Contact: surface-adjacent tetrahedra (a node on the body's surface), their body, and
-  // per-surface-face data for the time step.
+  // Contact: surface-adjacent tetrahedra (a node on the body's surface; under a volume law every
+  // tetrahedron, so that a surface triangle deep in the other body is still clipped), their body,
+  // and per-surface-face data for the time step.
   Eigen::Matrix4Xi surface_tets;
   std::vector<int> surface_tet_body;
   // Largest centroid-to-face height of each surface tetrahedron, 3V/(4 A_min), in the reference
@@ -111,9 +138,17 @@ struct World {
   std::vector<double> surface_tet_height;
   double penalty = 0;  // Pa
   double friction = 0;
+  ContactLaw law = ContactLaw::potential;
+  double kv = 0;  // N/m³
+  // Volume laws: the surface triangles (columns of face_outward) inside each contact tetrahedron,
+  // CSR: tet k owns tet_faces[tet_faces_begin[k] .. tet_faces_begin[k+1]); and the overlaps of the
+  // body pairs in contact (kept across steps for volume-linear's work).
+  std::vector<int> tet_faces_begin, tet_faces;
+  std::vector<BodyOverlap> overlaps;
   // Surface triangles (global nodes) and the penalty stiffness of each pressed into another
   // body, N/m (fdem/time_step.hpp).
   Eigen::Matrix3Xi face_nodes;
+  Eigen::Matrix3Xi face_outward;  // the same triangles in the surface's outward order
   std::vector<double> face_stiffness;
 
   // Broad phase (fdem/broad_phase.hpp): Verlet list of tetrahedron pairs whose boxes, grown by

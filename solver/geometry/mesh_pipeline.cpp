@@ -43,8 +43,22 @@ PreparedParticle finish(PreparedParticle p, const PipelineOptions& options) {
   p.props = mass_properties(p.surface);
   p.change = shape_change(p.source, p.source_props, p.surface, p.props);
   if (options.tetrahedralize) {
+    if (options.tet.element_size.size != 0) {
+      const std::string problem = element_size_problem(p.surface, options.tet.element_size);
+      if (!problem.empty()) {
+        throw InputError((options.element_size_key.empty() ? p.source_name + ": element_size"
+                                                           : options.element_size_key) +
+                         ": " + problem + " (surface " + p.source_name + ", " +
+                         std::to_string(p.surface.faces.cols()) + " triangles)");
+      }
+    }
     t0 = std::chrono::steady_clock::now();
-    p.tets = tetrahedralize(p.surface, options.tet);
+    p.element_size = options.tet.element_size;
+    try {
+      p.tets = tetrahedralize(p.surface, options.tet);
+    } catch (const InputError& e) {  // a budget passed: name the input it was passed on
+      throw InputError(p.source_name + ": " + e.what());
+    }
     p.seconds_tetrahedralize = seconds_since(t0);
     p.quality = tet_quality(p.tets);
   }
@@ -115,6 +129,11 @@ nlohmann::json mesh_report(const PreparedParticle& p) {
     j["min_dihedral_deg"] = p.quality.min_dihedral_deg;
     j["max_dihedral_deg"] = p.quality.max_dihedral_deg;
     j["smallest_edge"] = p.quality.smallest_edge;
+    j["longest_edge"] = p.quality.longest_edge;
+    j["max_radius_edge_ratio"] = p.quality.max_radius_edge_ratio;
+    j["tet_surface_faces"] = p.tets.surface.cols();
+    j["element_size"] =
+        p.element_size.set() ? nlohmann::json(p.element_size.size) : nlohmann::json();
   }
   j["repairs"] = p.log.repairs;
   j["warnings"] = p.log.warnings;
@@ -131,8 +150,10 @@ nlohmann::json mesh_report(const PreparedParticle& p) {
       {"simplification",
        "CGAL edge collapse, Lindstrom-Turk cost and placement, bounded normal change filter"},
       {"tetrahedralization",
-       "TetGen 1.5 constrained Delaunay, switches pYzQ (+q), surface triangles kept; flat surface "
-       "tetrahedra (height < 0.3 x longest edge) lifted onto an interior apex (docs/geometry.md)"},
+       "TetGen 1.5 constrained Delaunay, switches pYzQ (+q, +m with an element size, S budget), "
+       "surface triangles kept (bisected in their planes to the element size when one is set); "
+       "flat surface tetrahedra (height < 0.3 x longest edge) lifted onto an interior apex "
+       "(docs/geometry.md)"},
       {"asperity",
        "max over vertices of the radial height above the inertia-equivalent ellipsoid, over the "
        "equivalent-sphere radius (docs/geometry.md)"},

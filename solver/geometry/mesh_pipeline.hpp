@@ -23,6 +23,9 @@ struct PipelineOptions {
   ReadOptions read;            // scale
   bool tetrahedralize = true;  // false: surface only (rigid bodies need no tetrahedra)
   TetOptions tet;
+  // How a bad tet.element_size is named in the InputError: the scene file and key, or the
+  // command and option; empty: "SOURCE: element_size".
+  std::string element_size_key;
 };
 
 struct PreparedParticle {
@@ -34,7 +37,9 @@ struct PreparedParticle {
   MassProperties props;
   MeshCheck check;     // of `surface`, with self-intersections
   ShapeChange change;  // `surface` against `source`
-  TetMesh tets;        // empty when not asked for
+  TetMesh tets;        // empty when not asked for; its surface is `surface` bisected to
+                       // element_size when that is set
+  ElementSize element_size;
   TetQuality quality;
   double seconds_read = 0, seconds_simplify = 0, seconds_tetrahedralize = 0;  // wall-clock
 };

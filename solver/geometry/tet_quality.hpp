@@ -14,6 +14,10 @@ struct TetQuality {
   double min_dihedral_deg = 0;  // smallest dihedral angle over all tetrahedra, degrees
   double max_dihedral_deg = 0;  // largest, degrees
   double smallest_edge = 0;     // shortest tetrahedron edge, m: sets the FEM critical step
+  double longest_edge = 0;      // longest tetrahedron edge, m
+  // Largest circumradius / shortest edge over the tetrahedra (TetGen's q measure; √6/4 ≈ 0.61
+  // for the regular tetrahedron, unbounded for slivers).
+  double max_radius_edge_ratio = 0;
 };
 
 // Dihedral angle at edge (i, j) of a tetrahedron: the angle between the other two vertices'

@@ -1,13 +1,11 @@
-// TetGen call that keeps the surface triangles (issue 3, "Tetrahedralization"), and the interior
-// Steiner points that lift flat surface tetrahedra; the switches and their reasons are in the
-// header. TetGen is built as a library (TETLIBRARY): it throws an int.
-#define TETLIBRARY
+// Tetrahedralization keeping the surface triangles (issue 3, "Tetrahedralization"): the element
+// size (issue 11), the TetGen jobs, and the interior points that lift flat surface tetrahedra
+// (the TetGen call itself is tetgen_call.cpp).
 #include "geometry/tetrahedralize.hpp"
 
 #include <algorithm>
 #include <array>
 #include <cmath>
-#include <cstring>
 #include <limits>
 #include <numbers>
 #include <optional>
@@ -16,13 +14,10 @@
 #include <string>
 #include <vector>
 
-#include <fcntl.h>
-#include <sys/wait.h>
-#include <tetgen.h>
-#include <unistd.h>
-
 #include "core/error.hpp"
 #include "core/vec.hpp"
+#include "geometry/element_size.hpp"
+#include "geometry/tetgen_call.hpp"
 
 namespace asperity::geometry {
 namespace {
@@ -36,132 +31,42 @@ struct Lifts {
   std::vector<int> faces, apex_of;
 };
 
-std::string tetgen_error(int code) {
-  switch (code) {
-    case 1:
-      return "out of memory";
-    case 2:
-      return "internal error";
-    case 3:
-      return "the surface intersects itself";
-    case 4:
-      return "a feature of the surface is below TetGen's tolerance (very small)";
-    case 5:
-      return "two surface faces are too close to each other";
-    case 10:
-      return "invalid input";
-    default:
-      return "error code " + std::to_string(code);
-  }
-}
-
 std::array<int, 3> sorted(int a, int b, int c) {
   std::array<int, 3> t{a, b, c};
   std::sort(t.begin(), t.end());
   return t;
 }
 
-// Faces of the tetrahedra that belong to one tetrahedron only, as sorted triples.
-std::vector<std::array<int, 3>> boundary_faces(const Eigen::Matrix4Xi& tets) {
-  std::vector<std::array<int, 3>> all;
-  all.reserve(4 * static_cast<std::size_t>(tets.cols()));
-  for (Eigen::Index t = 0; t < tets.cols(); ++t)
-    for (const auto& f : kFace) all.push_back(sorted(tets(f[0], t), tets(f[1], t), tets(f[2], t)));
-  std::sort(all.begin(), all.end());
-  std::vector<std::array<int, 3>> once;
-  for (std::size_t i = 0; i < all.size();) {
-    std::size_t j = i;
-    while (j < all.size() && all[j] == all[i]) ++j;
-    if (j - i == 1) once.push_back(all[i]);
-    i = j;
-  }
-  return once;
-}
-
-// One TetGen run on the surface. Each lift adds its apex as an input point and the three
-// triangles from its face's edges to the apex as internal facets, which TetGen keeps (switch Y
-// applies to every facet): the tetrahedron (face, apex) is then one of the result's.
-TetMesh run_tetgen(const SurfaceMesh& surface, const Lifts& lifts, const TetOptions& options) {
+// The TetGen job for the surface with these lifts: walls are the triangles from each lifted
+// face's edges to its apex, once each (two faces that share an edge and an apex share that
+// wall); with an element size, every input point carries its size as TetGen's metric.
+TetgenJob job_for(const SurfaceMesh& surface, const Lifts& lifts, const TetOptions& options) {
+  TetgenJob job;
+  job.surface = surface;
+  job.extra_points = lifts.apexes;
+  job.radius_edge_ratio = options.radius_edge_ratio;
+  job.min_dihedral_deg = options.min_dihedral_deg;
+  job.max_steiner_points = options.max_steiner_points;
   const int n = static_cast<int>(surface.vertices.cols());
-  const int nf = static_cast<int>(surface.faces.cols());
-  const int nl = static_cast<int>(lifts.apexes.size());
-  // Walls: the triangles from each lifted face's edges to its apex, once each (two faces that
-  // share an edge and an apex share that wall).
-  std::vector<std::array<int, 3>> walls;
   for (std::size_t k = 0; k < lifts.faces.size(); ++k) {
     const auto t = surface.faces.col(lifts.faces[k]);
-    for (int e = 0; e < 3; ++e) walls.push_back(sorted(t[e], t[(e + 1) % 3], n + lifts.apex_of[k]));
+    for (int e = 0; e < 3; ++e)
+      job.internal_facets.push_back(sorted(t[e], t[(e + 1) % 3], n + lifts.apex_of[k]));
   }
-  std::sort(walls.begin(), walls.end());
-  walls.erase(std::unique(walls.begin(), walls.end()), walls.end());
-  const int nw = static_cast<int>(walls.size());
-  tetgenio in, out;
-  in.firstnumber = 0;
-  in.numberofpoints = n + nl;
-  in.pointlist = new REAL[3 * static_cast<std::size_t>(n + nl)];
-  std::memcpy(in.pointlist, surface.vertices.data(),
-              sizeof(REAL) * 3 * static_cast<std::size_t>(n));
-  for (int k = 0; k < nl; ++k)
-    for (int d = 0; d < 3; ++d) in.pointlist[3 * (n + k) + d] = lifts.apexes[k](d);
-  in.numberoffacets = nf + nw;
-  in.facetlist = new tetgenio::facet[static_cast<std::size_t>(nf + nw)];
-  const auto set_facet = [&](int i, int a, int b, int c) {
-    tetgenio::facet& f = in.facetlist[i];
-    tetgenio::init(&f);
-    f.numberofpolygons = 1;
-    f.polygonlist = new tetgenio::polygon[1];
-    tetgenio::init(&f.polygonlist[0]);
-    f.polygonlist[0].numberofvertices = 3;
-    f.polygonlist[0].vertexlist = new int[3]{a, b, c};
-  };
-  for (int i = 0; i < nf; ++i)
-    set_facet(i, surface.faces(0, i), surface.faces(1, i), surface.faces(2, i));
-  for (int k = 0; k < nw; ++k) set_facet(nf + k, walls[k][0], walls[k][1], walls[k][2]);
-  std::ostringstream sw;
-  sw << "pYzQ";
-  if (options.radius_edge_ratio > 0) {
-    sw << "q" << options.radius_edge_ratio;
-    if (options.min_dihedral_deg > 0) sw << "/" << options.min_dihedral_deg;
+  std::sort(job.internal_facets.begin(), job.internal_facets.end());
+  job.internal_facets.erase(std::unique(job.internal_facets.begin(), job.internal_facets.end()),
+                            job.internal_facets.end());
+  if (options.element_size.set()) {
+    // TetGen splits a tetrahedron whose circumradius exceeds the size at its vertices; a regular
+    // tetrahedron of edge h has circumradius h √6/4 ≈ 0.61 h.
+    constexpr double kCircumradiusPerEdge = 0.6123724356957945;
+    for (Eigen::Index i = 0; i < n; ++i)
+      job.point_sizes.push_back(kCircumradiusPerEdge *
+                                options.element_size.at(surface.vertices.col(i)));
+    for (const Vec3& p : lifts.apexes)
+      job.point_sizes.push_back(kCircumradiusPerEdge * options.element_size.at(p));
   }
-  std::string switches = sw.str();
-  try {
-    ::tetrahedralize(switches.data(), &in, &out);
-  } catch (int code) {
-    throw std::runtime_error("TetGen failed (switches " + switches + "): " + tetgen_error(code));
-  }
-  ASPERITY_CHECK(out.numberofcorners == 4 && out.numberofpoints >= n + nl);
-
-  TetMesh tm;
-  tm.nodes = Eigen::Map<const Eigen::Matrix3Xd>(out.pointlist, 3, out.numberofpoints);
-  if (tm.nodes.leftCols(n) != surface.vertices) {
-    throw std::runtime_error("TetGen reordered or moved the surface vertices (switches " +
-                             switches + ")");
-  }
-  for (int k = 0; k < nl; ++k) {
-    if (tm.nodes.col(n + k) != lifts.apexes[k]) {
-      throw std::runtime_error("TetGen reordered or moved the lift apexes (switches " + switches +
-                               ")");
-    }
-  }
-  tm.tets = Eigen::Map<const Eigen::Matrix4Xi>(out.tetrahedronlist, 4, out.numberoftetrahedra);
-  for (Eigen::Index t = 0; t < tm.tets.cols(); ++t) {
-    const Vec3 a = tm.nodes.col(tm.tets(0, t));
-    const double six_v = (tm.nodes.col(tm.tets(1, t)) - a)
-                             .cross(tm.nodes.col(tm.tets(2, t)) - a)
-                             .dot(tm.nodes.col(tm.tets(3, t)) - a);
-    if (six_v < 0) std::swap(tm.tets(2, t), tm.tets(3, t));
-  }
-  tm.surface = surface.faces;
-
-  // The promise of switch Y, checked: the tetrahedra's boundary is the input triangles.
-  std::vector<std::array<int, 3>> input(static_cast<std::size_t>(nf));
-  for (int i = 0; i < nf; ++i)
-    input[i] = sorted(surface.faces(0, i), surface.faces(1, i), surface.faces(2, i));
-  std::sort(input.begin(), input.end());
-  if (boundary_faces(tm.tets) != input) {
-    throw std::runtime_error("TetGen changed the surface triangles (switches " + switches + ")");
-  }
-  return tm;
+  return job;
 }
 
 // Whether the convex hulls of two small point sets (triangle or tetrahedron) have disjoint
@@ -282,77 +187,39 @@ StepScales step_scales(const TetMesh& mesh) {
   return out;
 }
 
-// run_tetgen with lifts, in a child process. Debian's TetGen keeps its internal assert()s, and
-// some sets of lift walls trip one during facet recovery (e.g. removeedgebyflips on a
-// 2000-triangle ballast particle): abort() would end the whole program, a study included. The
-// child sends the mesh back through a pipe; a round whose child fails (signal, throw) is
-// reported as empty and the lifting keeps the best mesh it already has.
-std::optional<TetMesh> run_tetgen_isolated(const SurfaceMesh& surface, const Lifts& lifts,
-                                           const TetOptions& options) {
-  int fd[2];
-  if (pipe(fd) != 0) return run_tetgen(surface, lifts, options);
-  const pid_t pid = fork();
-  if (pid < 0) {
-    close(fd[0]);
-    close(fd[1]);
-    return run_tetgen(surface, lifts, options);
-  }
-  const auto write_all = [](int f, const void* data, std::size_t bytes) {
-    const char* p = static_cast<const char*>(data);
-    while (bytes > 0) {
-      const ssize_t w = write(f, p, bytes);
-      if (w <= 0) return false;
-      p += w;
-      bytes -= static_cast<std::size_t>(w);
-    }
-    return true;
-  };
-  if (pid == 0) {  // child: mesh, send, and leave without running the parent's exit handlers
-    close(fd[0]);
-    // TetGen's assert message is the parent's to summarise (it keeps its mesh), not to print.
-    if (const int null = open("/dev/null", O_WRONLY); null >= 0) dup2(null, STDERR_FILENO);
-    int code = 1;
-    try {
-      const TetMesh tm = run_tetgen(surface, lifts, options);
-      const std::int64_t size[2] = {tm.nodes.cols(), tm.tets.cols()};
-      if (write_all(fd[1], size, sizeof size) &&
-          write_all(fd[1], tm.nodes.data(),
-                    sizeof(double) * 3 * static_cast<std::size_t>(size[0])) &&
-          write_all(fd[1], tm.tets.data(), sizeof(int) * 4 * static_cast<std::size_t>(size[1])))
-        code = 0;
-    } catch (...) {
-    }
-    close(fd[1]);
-    _exit(code);
-  }
-  close(fd[1]);
-  std::string bytes;
-  char buf[1 << 16];
-  for (ssize_t r; (r = read(fd[0], buf, sizeof buf)) != 0;) {
-    if (r < 0) break;
-    bytes.append(buf, static_cast<std::size_t>(r));
-  }
-  close(fd[0]);
-  int status = 0;
-  waitpid(pid, &status, 0);
-  if (!WIFEXITED(status) || WEXITSTATUS(status) != 0 || bytes.size() < 16) return std::nullopt;
-  std::int64_t size[2];
-  std::memcpy(size, bytes.data(), sizeof size);
-  const std::size_t need = sizeof size + sizeof(double) * 3 * static_cast<std::size_t>(size[0]) +
-                           sizeof(int) * 4 * static_cast<std::size_t>(size[1]);
-  if (bytes.size() != need) return std::nullopt;
-  TetMesh tm;
-  tm.nodes.resize(3, size[0]);
-  tm.tets.resize(4, size[1]);
-  std::memcpy(tm.nodes.data(), bytes.data() + sizeof size, sizeof(double) * 3 * size[0]);
-  std::memcpy(tm.tets.data(), bytes.data() + sizeof size + sizeof(double) * 3 * size[0],
-              sizeof(int) * 4 * size[1]);
-  tm.surface = surface.faces;
-  return tm;
+long default_steiner_budget(const SurfaceMesh& surface, const ElementSize& size) {
+  const double tets = size.set() ? estimated_tets(surface, size) : 0.0;
+  return std::max(100'000L, 20 * static_cast<long>(surface.vertices.cols()) +
+                                static_cast<long>(std::min(4 * tets, 1e12)));
 }
 
-TetMesh tetrahedralize(const SurfaceMesh& surface, const TetOptions& options) {
-  TetMesh tm = run_tetgen(surface, {}, options);
+TetMesh tetrahedralize(const SurfaceMesh& input, const TetOptions& options_in) {
+  TetOptions options = options_in;
+  if (options.max_steiner_points < 0)
+    options.max_steiner_points = default_steiner_budget(input, options.element_size);
+  const SurfaceMesh surface =
+      options.element_size.set() ? subdivide_surface(input, options.element_size) : input;
+  // The first run decides whether the mesh can be made at all: a time or Steiner-point budget
+  // overrun is the caller's request that cannot be met (InputError), a TetGen failure is
+  // std::runtime_error.
+  const TetgenJob first = job_for(surface, {}, options);
+  IsolatedResult r = run_tetgen_isolated(first, options.time_budget_s);
+  std::ostringstream bound;
+  bound << "radius-edge bound (quality) " << options.radius_edge_ratio;
+  if (r.timed_out) {
+    throw InputError("tetrahedralization did not finish within its time budget of " +
+                     std::to_string(static_cast<long>(options.time_budget_s)) + " s (" +
+                     bound.str() + ", " + std::to_string(surface.faces.cols()) +
+                     " surface triangles); ask for a looser bound (>= 1.2) or a larger element "
+                     "size");
+  }
+  if (!r.mesh) throw std::runtime_error(r.failure);
+  TetMesh tm = std::move(*r.mesh);
+  if (options.max_steiner_points >= 0 && steiner_points(first, tm) >= options.max_steiner_points) {
+    throw InputError("the " + bound.str() + " needs more than the budget of " +
+                     std::to_string(options.max_steiner_points) +
+                     " interior points on this surface; ask for a looser bound (>= 1.2)");
+  }
   if (options.min_surface_height_ratio <= 0) return tm;
   const Eigen::Index nf = surface.faces.cols();
   const auto corner = [&](Eigen::Index f, int k) {
@@ -541,9 +408,10 @@ TetMesh tetrahedralize(const SurfaceMesh& surface, const TetOptions& options) {
       }
     }
     if (!added && !dropped) break;
-    std::optional<TetMesh> next = run_tetgen_isolated(surface, lifts, options);
-    if (!next) break;  // TetGen failed on these walls: keep the best mesh so far
-    tm = std::move(*next);
+    IsolatedResult next =
+        run_tetgen_isolated(job_for(surface, lifts, options), options.time_budget_s);
+    if (!next.mesh) break;  // TetGen failed on these walls: keep the best mesh so far
+    tm = std::move(*next.mesh);
     const StepScales sc = step_scales(tm);
     const double gain = std::min(sc.least_height / s0.least_height,
                                  std::sqrt(s0.contact_frequency2 / sc.contact_frequency2));

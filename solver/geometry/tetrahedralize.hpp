@@ -4,6 +4,7 @@
 #include <vector>
 
 #include "core/mesh.hpp"
+#include "geometry/element_size.hpp"
 
 namespace asperity::geometry {
 
@@ -39,7 +40,23 @@ struct TetOptions {
   // An apex whose tetrahedra include one with least height below this fraction of its longest
   // edge is taken out again.
   double min_apex_tet_height_ratio = 0.03;
+  // Element size apart from the surface (issue 11; docs/geometry.md, "Element size"): when set,
+  // the surface triangles are first bisected in their own planes down to the size
+  // (subdivide_surface), and TetGen refines the interior until each tetrahedron's circumradius
+  // is within the size at its vertices (switch m). Unset: the surface triangles are the
+  // elements' faces, as before.
+  ElementSize element_size;
+  // Budgets (issue 18): TetGen's interior points (switch S; an unattainable quality bound such as
+  // 0.5 otherwise inserts points without end) and wall-clock seconds per TetGen run (in a child
+  // process, killed at the budget). Passing either is an InputError naming the bound. < 0: the
+  // Steiner budget is 20 × the surface vertices + 4 × the estimated tetrahedra of the element
+  // size, at least 100 000.
+  long max_steiner_points = -1;
+  double time_budget_s = 300;
 };
+
+// The Steiner budget TetOptions::max_steiner_points < 0 stands for, for this surface.
+long default_steiner_budget(const SurfaceMesh& surface, const ElementSize& size);
 
 // Height of the tetrahedron on each surface face above that face, 3V/A, and its longest edge:
 // Munjiza's potential rises from the face over a quarter of that height, so the face's penalty
@@ -64,13 +81,15 @@ struct StepScales {
 StepScales step_scales(const TetMesh& mesh);
 
 // Constrained Delaunay tetrahedralization with TetGen 1.5 (Si 2015, ACM TOMS 41(2):11), switches
-// "pYzQ" (+ "q" when asked): p reads the surface as a piecewise linear complex, Y forbids
-// Steiner points on it, so the boundary of the result is exactly the input triangles. The
-// result's nodes begin with the surface vertices in their order (checked), then the lift apexes
-// (TetOptions), then TetGen's interior points; its tetrahedra have
-// positive orientation ((b−a)×(c−a))·(d−a) > 0, and `surface` is the input's face array.
-// Throws std::runtime_error when TetGen fails (its reason in words) or when the boundary of the
-// result differs from the input triangles.
+// "pYzQ" (+ "q" when asked, "m" with an element size, "S" budget; geometry/tetgen_call.hpp): p
+// reads the surface as a piecewise linear complex, Y forbids Steiner points on it, so the
+// boundary of the result is exactly the (subdivided) input triangles. The result's nodes begin
+// with the surface vertices in their order (checked; with an element size, the input's vertices
+// then the bisection midpoints), then the lift apexes (TetOptions), then TetGen's interior
+// points; its tetrahedra have positive orientation ((b−a)×(c−a))·(d−a) > 0, and `surface` is the
+// (subdivided) surface's face array. Throws InputError when a budget is passed,
+// std::runtime_error when TetGen fails (its reason in words) or when the boundary of the result
+// differs from the input triangles.
 TetMesh tetrahedralize(const SurfaceMesh& surface, const TetOptions& options = {});
 
 }  // namespace asperity::geometry

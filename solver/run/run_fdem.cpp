@@ -33,7 +33,8 @@ TetMesh mesh_body(const scene::MeshShape& m, const std::string& key) {
   o.faces = m.faces;
   o.read.scale = m.scale;
   o.tetrahedralize = true;
-  (void)key;
+  o.tet.element_size.size = m.element_size;
+  o.element_size_key = key + "shape.element_size";
   return geometry::prepare_particle(m.file, o).tets;
 #else
   (void)m;
@@ -65,14 +66,16 @@ struct Built {
 
 Built build(const scene::SceneDef& s) {
   const std::string where = s.file.string() + ": ";
-  if (s.contact.law != scene::ContactLaw::potential) {
+  const bool volume_law = s.contact.law == scene::ContactLaw::volume_hertz ||
+                          s.contact.law == scene::ContactLaw::volume_linear;
+  if (s.contact.law != scene::ContactLaw::potential && !volume_law) {
     throw InputError(where +
                      "contact.law: mesh bodies collide through \"potential\" (Munjiza's "
-                     "distributed potential); set contact.law to \"potential\"");
+                     "distributed potential), \"volume-hertz\" or \"volume-linear\"");
   }
   if (s.contact.restitution) {
     throw InputError(where +
-                     "contact.restitution: the potential law is elastic (energy is "
+                     "contact.restitution: the potential and volume laws are elastic (energy is "
                      "lost only to friction and element damping); remove the key");
   }
   Built out;
@@ -85,6 +88,12 @@ Built build(const scene::SceneDef& s) {
     const Material& mat = s.materials[body.material];
     friction = std::min(friction, mat.friction);
     fdem::BodyDef d{.name = body.name, .material = mat};
+    if (volume_law && body.model == scene::Model::fem && !body.fixed) {
+      throw InputError(
+          key + "model: the volume laws are for rigid bodies (contact.law \"" +
+          (s.contact.law == scene::ContactLaw::volume_hertz ? "volume-hertz" : "volume-linear") +
+          "\"); use model \"rigid\" or contact.law \"potential\"");
+    }
     if (const auto* mesh = std::get_if<scene::MeshShape>(&body.shape)) {
       d.mesh = centred_at(mesh_body(*mesh, key), body.position);
       d.kind = body.fixed ? fdem::BodyKind::fixed
@@ -104,9 +113,10 @@ Built build(const scene::SceneDef& s) {
       planes.emplace_back(static_cast<int>(b), plane);
       continue;  // sized once every other body is known
     } else {
-      throw InputError(key +
-                       "shape: spheres cannot share a scene with mesh bodies (mesh the "
-                       "sphere: shape \"mesh\")");
+      throw InputError(key + (volume_law ? "shape: the volume laws need rigid mesh bodies (a "
+                                           "faceted sphere is shape \"mesh\")"
+                                         : "shape: spheres cannot share a scene with mesh bodies "
+                                           "(mesh the sphere: shape \"mesh\")"));
     }
     for (Eigen::Index i = 0; i < d.mesh.nodes.cols(); ++i) extent.extend(d.mesh.nodes.col(i));
     out.def.bodies.push_back(std::move(d));
@@ -139,10 +149,21 @@ Built build(const scene::SceneDef& s) {
   }
   out.def.gravity = s.gravity;
   out.def.contact.penalty = s.contact.penalty.value_or(0.0);
+  out.def.contact.law =
+      s.contact.law == scene::ContactLaw::volume_hertz
+          ? fdem::ContactLaw::volume_hertz
+          : (s.contact.law == scene::ContactLaw::volume_linear ? fdem::ContactLaw::volume_linear
+                                                               : fdem::ContactLaw::potential);
+  out.def.contact.kv = s.contact.kv.value_or(0.0);
   if (s.contact.penalty_alpha) out.def.contact.alpha = *s.contact.penalty_alpha;
   // Coulomb μ: the scene's, else the smallest of the bodies' materials (as pair_friction does
   // for a pair).
   out.def.contact.friction = s.contact.friction.value_or(friction);
+  if (volume_law && out.def.contact.friction > 0) {
+    throw InputError(where + (s.contact.friction ? "contact.friction" : "materials") +
+                     ": the volume laws are frictionless in this build (friction " +
+                     fmt(out.def.contact.friction) + "); set contact.friction to 0");
+  }
   for (std::size_t i = 0; i < out.scene_body.size(); ++i) {
     if (out.scene_body[i] == s.record.body) out.record = static_cast<int>(i);
   }
@@ -227,6 +248,7 @@ StepPrediction prediction_of(const scene::SceneDef& s, const fdem::CriticalStep&
 }
 
 StepRegime regime_of(const fdem::World& w) {
+  if (w.law != fdem::ContactLaw::potential) return StepRegime::fdem_volume;
   for (const fdem::Body& b : w.bodies) {
     if (b.kind == fdem::BodyKind::deformable) return StepRegime::fdem_deformable;
   }
@@ -235,8 +257,21 @@ StepRegime regime_of(const fdem::World& w) {
 
 }  // namespace
 
+std::vector<TetMesh> collision_meshes(const scene::SceneDef& s) {
+  Built built = build(s);
+  std::vector<TetMesh> out(s.bodies.size());
+  for (std::size_t i = 0; i < built.scene_body.size(); ++i) {
+    out[static_cast<std::size_t>(built.scene_body[i])] = std::move(built.def.bodies[i].mesh);
+  }
+  return out;
+}
+
 bool is_fdem_scene(const scene::SceneDef& s) {
-  if (s.contact.law == scene::ContactLaw::potential) return true;
+  if (s.contact.law == scene::ContactLaw::potential ||
+      s.contact.law == scene::ContactLaw::volume_hertz ||
+      s.contact.law == scene::ContactLaw::volume_linear) {
+    return true;
+  }
   return std::any_of(s.bodies.begin(), s.bodies.end(), [](const scene::BodyDef& b) {
     return std::holds_alternative<scene::MeshShape>(b.shape);
   });
@@ -295,13 +330,21 @@ RunResult run_fdem(const scene::SceneDef& s, const RunOptions& options) {
   auto& j = result.summary;
   write_measures(j, id, loop.status, loop.message, loop.impact, w.time, loop.restitution.value(),
                  loop.energy_drift);
+  // The raw peak_force beside the first contact's peak low-passed over a twentieth of its
+  // duration and that contact's raw / filtered − 1 (docs/physics.md, issue 11).
+  j["peak_force_filtered"] = loop.impact.filtered_peak();
+  j["ringing_amplitude"] = loop.impact.ringing_amplitude();
   // Largest overlap depth / contacting element's centroid height (runaway penetration at 0.5).
   j["max_penetration_ratio"] = m.max_penetration;
   write_step(j, step, prediction);
   j["dt_element"] = std::isfinite(crit.element) ? J(crit.element) : J();
   j["dt_contact"] = std::isfinite(crit.contact) ? J(crit.contact) : J();
-  j["penalty"] = w.penalty;
-  j["penalty_alpha"] = s.contact.penalty ? J() : J(built.def.contact.alpha);
+  if (w.law == fdem::ContactLaw::potential) {
+    j["penalty"] = w.penalty;
+    j["penalty_alpha"] = s.contact.penalty ? J() : J(built.def.contact.alpha);
+  } else if (w.law == fdem::ContactLaw::volume_linear) {
+    j["kv"] = w.kv;
+  }
   j["friction"] = w.friction;
   write_run(j, w.steps, w.time, loop.ended_by_separation, loop.cpu_seconds, loop.wall_seconds);
   j["profile"] = profile_json(w.profile, per_tick, true);
@@ -321,6 +364,14 @@ RunResult run_fdem(const scene::SceneDef& s, const RunOptions& options) {
     bodies.push_back(e);
   }
   j["bodies"] = bodies;
+  if (w.bodies[built.record].kind == fdem::BodyKind::rigid) {
+    // The recorded rigid body's motion at the end (the rebound the peers compare).
+    const fdem::RigidBody& rb = w.rigid[w.bodies[built.record].rigid];
+    j["final_velocity"] = {rb.velocity.x(), rb.velocity.y(), rb.velocity.z()};
+    j["final_angular_velocity"] = {rb.omega.x(), rb.omega.y(), rb.omega.z()};
+    j["final_speed"] = rb.velocity.norm();
+    j["final_spin"] = rb.omega.norm();
+  }
   j["surface_tets"] = w.surface_tets.cols();
   return result;
 }

@@ -1,7 +1,11 @@
 // The FEM/DEM path of `asperity run`: scenes with mesh bodies (model "rigid" or "fem") against
-// each other and against fixed boxes and planes, in Munjiza's potential contact.
+// each other and against fixed boxes and planes, in Munjiza's potential contact or, for rigid
+// bodies, a volume law.
 #pragma once
 
+#include <vector>
+
+#include "core/mesh.hpp"
 #include "run/run_result.hpp"
 #include "run/step_policy.hpp"
 #include "scene/scene.hpp"
@@ -14,6 +18,10 @@ bool is_fdem_scene(const scene::SceneDef& scene);
 // Same contract as run_scene (summary keys, rows, InputError for a scene it cannot run).
 RunResult run_fdem(const scene::SceneDef& scene, const RunOptions& options);
 
+// The tetrahedral mesh each scene body collides with in run_fdem, in the world frame (a mesh body
+// through the geometry pipeline and placed at its position, a box as its block, a plane as the
+// fixed slab under it), by scene body index: what a peer's translator must reproduce.
+std::vector<TetMesh> collision_meshes(const scene::SceneDef& scene);
 // The step run_fdem would take (world built, not stepped).
 StepChoice fdem_step(const scene::SceneDef& scene, const RunOptions& options);
 

@@ -45,6 +45,11 @@ dem::SphereWorld build_sphere_world(const scene::SceneDef& s) {
       throw InputError(where +
                        "contact.law: \"potential\" needs mesh bodies (model \"fem\" or a "
                        "rigid mesh); spheres use hertz, hertz-mindlin or linear");
+    case scene::ContactLaw::volume_hertz:
+    case scene::ContactLaw::volume_linear:
+      throw InputError(where + "contact.law: \"" + scene::contact_law_name(s.contact.law) +
+                       "\" needs rigid mesh bodies (a faceted sphere is shape \"mesh\"); "
+                       "spheres use hertz, hertz-mindlin or linear");
   }
   w.law.friction = s.contact.friction;
   w.law.restitution = s.contact.restitution;

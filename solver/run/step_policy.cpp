@@ -16,6 +16,8 @@ double default_safety(StepRegime regime) {
       return 0.5;
     case StepRegime::fdem_rigid:
       return 0.1;
+    case StepRegime::fdem_volume:
+      return 0.01;
   }
   return 0.01;
 }

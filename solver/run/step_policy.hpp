@@ -29,7 +29,11 @@ struct StepPrediction {
 // - rigid-only mesh scenes 0.1: the rigid bound over the pressed patch is sharp, so 0.5 of it
 //   resolves a contact in 10–15 steps only; the peak force was 0.4–0.8 % off the converged-step
 //   value on three study particles at 250 and 1000 triangles, 0.02–0.06 % at 0.1.
-enum class StepRegime { spheres, fdem_deformable, fdem_rigid };
+// - rigid polyhedra under a volume law 0.01: the step is 2/ω of the Hertz-equivalent pair at its
+//   peak (or of a flat face's approach, fdem/time_step.cpp), about half the contact, as for
+//   spheres: restitution 1 within 1e-4 and energy drift below 1e-4 for faceted spheres and a
+//   cube's vertex, edge and face (tests/fdem/test_volume_contact.cpp).
+enum class StepRegime { spheres, fdem_deformable, fdem_rigid, fdem_volume };
 double default_safety(StepRegime regime);
 
 struct StepChoice {

@@ -17,7 +17,7 @@ struct VtkOutput {
 struct SeriesStats {
   long frames = 0;           // frames listed in run.pvd (the static part not counted)
   long long bytes = 0;       // bytes of every frame file written, static part included
-  double write_seconds = 0;  // wall time spent writing, s
+  double write_seconds = 0;  // wall time spent on frames (copies, stresses, encoding, files), s
 };
 
 }  // namespace asperity::run

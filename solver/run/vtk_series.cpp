@@ -22,6 +22,20 @@ namespace {
 
 using Clock = std::chrono::steady_clock;
 
+// Adds the wall time of its scope to `seconds`: everything the series does (copies, stresses,
+// encoding, writing) counts as the frames' cost.
+class Timed {
+ public:
+  explicit Timed(double& seconds) : seconds_(seconds), t0_(Clock::now()) {}
+  ~Timed() { seconds_ += std::chrono::duration<double>(Clock::now() - t0_).count(); }
+  Timed(const Timed&) = delete;
+  Timed& operator=(const Timed&) = delete;
+
+ private:
+  double& seconds_;
+  Clock::time_point t0_;
+};
+
 std::vector<double> flat(const Eigen::Matrix3Xd& m) {
   return std::vector<double>(m.data(), m.data() + m.size());
 }
@@ -47,22 +61,18 @@ FrameFiles::FrameFiles(const VtkOutput& out) : out_(out) {
 }
 
 void FrameFiles::write_static(const std::string& file, const std::string& xml) {
-  const auto t0 = Clock::now();
   io::write_atomically(out_.dir / file, xml);
   static_file_ = file;
   stats_.bytes += static_cast<long long>(xml.size());
-  stats_.write_seconds += std::chrono::duration<double>(Clock::now() - t0).count();
 }
 
 void FrameFiles::write_frame(double time, const std::string& file, const std::string& xml) {
-  const auto t0 = Clock::now();
   io::write_atomically(out_.dir / file, xml);
   pvd_.add(time, file, 0);
   if (!static_file_.empty()) pvd_.add(time, static_file_, 1);
   pvd_.write(out_.dir / "run.pvd");
   ++stats_.frames;
   stats_.bytes += static_cast<long long>(xml.size());
-  stats_.write_seconds += std::chrono::duration<double>(Clock::now() - t0).count();
 }
 
 // ---------------------------------------------------------------------------------------------
@@ -71,6 +81,7 @@ void FrameFiles::write_frame(double time, const std::string& file, const std::st
 FdemSeries::FdemSeries(fdem::World& w, const std::vector<Eigen::Matrix4Xi>& body_tets,
                        const VtkOutput& out)
     : files_(out), policy_(out.every) {
+  const Timed timed(files_.stats().write_seconds);
   ASPERITY_CHECK(body_tets.size() == w.bodies.size());
   w.keep_contact_force = true;
   w.f_contact = Eigen::Matrix3Xd::Zero(3, w.node_count());  // frame 0: before any contact step
@@ -191,6 +202,7 @@ std::string FdemSeries::document(const fdem::World& w, const State& s) const {
 }
 
 void FdemSeries::after_step(const fdem::World& w, long k, double force, bool last) {
+  const Timed timed(files_.stats().write_seconds);
   if (policy_.new_peak(force)) peak_ = capture(w, k);
   if (!policy_.regular(k, last) || k == last_written_step_) return;
   files_.write_frame(w.time, frame_name("bodies", frame_++, "vtu"), document(w, capture(w, k)));
@@ -199,6 +211,7 @@ void FdemSeries::after_step(const fdem::World& w, long k, double force, bool las
 }
 
 void FdemSeries::finish(const fdem::World& w) {
+  const Timed timed(files_.stats().write_seconds);
   // A run that stopped early (unstable) ends on the state where it stopped.
   if (w.steps != last_written_step_) {
     files_.write_frame(w.time, frame_name("bodies", frame_++, "vtu"),
@@ -216,6 +229,7 @@ void FdemSeries::finish(const fdem::World& w) {
 
 SphereSeries::SphereSeries(const dem::SphereWorld& w, const VtkOutput& out)
     : files_(out), policy_(out.every) {
+  const Timed timed(files_.stats().write_seconds);
   // Walls as thin blocks of tetrahedra: a box as it is; a plane as a square slab under its
   // point, 4× wider than the farthest sphere from that point (reach 1 m with no sphere).
   std::vector<TetMesh> walls;
@@ -276,6 +290,7 @@ std::string SphereSeries::document(const dem::SphereWorld& w, const State& s) co
 }
 
 void SphereSeries::after_step(const dem::SphereWorld& w, long k, double force, bool last) {
+  const Timed timed(files_.stats().write_seconds);
   if (policy_.new_peak(force)) peak_ = capture(w, k);
   if (!policy_.regular(k, last) || k == last_written_step_) return;
   files_.write_frame(w.time, frame_name("spheres", frame_++, "vtp"), document(w, capture(w, k)));
@@ -284,6 +299,7 @@ void SphereSeries::after_step(const dem::SphereWorld& w, long k, double force, b
 }
 
 void SphereSeries::finish(const dem::SphereWorld& w) {
+  const Timed timed(files_.stats().write_seconds);
   // A run that stopped early (unstable) ends on the state where it stopped.
   if (w.steps != last_written_step_) {
     files_.write_frame(w.time, frame_name("spheres", frame_++, "vtp"),

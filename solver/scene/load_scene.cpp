@@ -56,6 +56,9 @@ Shape parse_shape(const JsonReader& s) {
     if (m.file.is_relative()) m.file = s.file().parent_path() / m.file;
     m.faces = s.has("faces") ? static_cast<int>(s.integer("faces", 4, 10'000'000)) : 0;
     m.scale = s.has("scale") ? s.positive("scale") : 1.0;
+    // Positive here; against the particle's size and the tetrahedra it would make, where the
+    // mesh is read (geometry::element_size_problem).
+    m.element_size = s.has("element_size") ? s.positive("element_size") : 0.0;
     return m;
   }
   const std::string near = io::closest_key(type, {"sphere", "plane", "box", "mesh"});
@@ -73,6 +76,11 @@ ContactDef parse_contact(const JsonReader& c) {
   if (const std::optional<ContactLaw> known = contact_law_from_name(law)) {
     out.law = *known;
     if (out.law == ContactLaw::linear) out.kn = c.positive("kn");
+    if (out.law == ContactLaw::volume_linear) {
+      if (!c.has("kv"))
+        c.fail("kv", "volume-linear needs kv, the volumetric stiffness in N/m³ (F_n = kv · V)");
+      out.kv = c.positive("kv");
+    }
   } else {
     const std::string near = io::closest_key(law, names);
     std::string expected;
@@ -83,6 +91,7 @@ ContactDef parse_contact(const JsonReader& c) {
                       (near.empty() ? "" : " (did you mean \"" + near + "\"?)") + "; expected " +
                       expected);
   }
+  if (c.has("kv") && !out.kv) c.fail("kv", "only the volume-linear law takes kv");
   if (c.has("kn") && !out.kn) c.fail("kn", "only the linear law takes kn");
   if (c.has("kt")) {
     if (out.law != ContactLaw::linear) c.fail("kt", "only the linear law takes kt");

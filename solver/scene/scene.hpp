@@ -30,6 +30,10 @@ struct MeshShape {
   std::filesystem::path file;  // resolved against the scene file's folder
   int faces = 0;               // 0: keep the file's triangles
   double scale = 1;            // multiplies the file's coordinates (e.g. 1e-3 for mm)
+  // m, after scale; 0: the surface triangles are the elements' faces. Otherwise the target
+  // tetrahedron edge length, the surface bisected in its own planes to meet it (the geometry
+  // unchanged) and the interior filled with quality tetrahedra (docs/geometry.md).
+  double element_size = 0;
 };
 using Shape = std::variant<SphereShape, PlaneShape, BoxShape, MeshShape>;
 
@@ -49,14 +53,16 @@ struct BodyDef {
   double damping_ratio = 0;
 };
 
-enum class ContactLaw { hertz, hertz_mindlin, linear, potential };
+enum class ContactLaw { hertz, hertz_mindlin, linear, potential, volume_hertz, volume_linear };
 
 // The scene's name of each law: the one table the loader parses with and summaries write.
-inline constexpr std::array<std::pair<ContactLaw, std::string_view>, 4> kContactLawNames{{
+inline constexpr std::array<std::pair<ContactLaw, std::string_view>, 6> kContactLawNames{{
     {ContactLaw::hertz, "hertz"},
     {ContactLaw::hertz_mindlin, "hertz-mindlin"},
     {ContactLaw::linear, "linear"},
     {ContactLaw::potential, "potential"},
+    {ContactLaw::volume_hertz, "volume-hertz"},
+    {ContactLaw::volume_linear, "volume-linear"},
 }};
 inline std::string contact_law_name(ContactLaw law) {
   for (const auto& [l, name] : kContactLawNames) {
@@ -78,6 +84,7 @@ struct ContactDef {
   std::optional<double> penalty;        // potential: penalty p, Pa (default α·E)
   std::optional<double> penalty_alpha;  // potential: α in p = α·E (E the largest moving body's
                                         // Young's modulus; default 10); exclusive with penalty
+  std::optional<double> kv;             // volume-linear: volumetric stiffness, N/m³
   std::optional<double> friction;       // overrides the materials' pair friction
   std::optional<double> restitution;    // overrides the materials' pair restitution
 };

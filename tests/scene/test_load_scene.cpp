@@ -185,3 +185,45 @@ TEST(LoadScene, EndAfterSeparationKeepsTheImpactMeasures) {
   EXPECT_NEAR(t_end, separation + 1e-4, dt);
   EXPECT_LT(t_end, 0.01);
 }
+
+// The volume laws' keys (issue 13): volume-linear needs kv > 0; kv belongs to volume-linear only;
+// volume laws need mesh bodies, so a sphere scene asking for one is refused with its reason.
+TEST(LoadScene, VolumeLawKeysAreChecked) {
+  const std::string no_kv =
+      error_of("no-kv", edit("{\"law\": \"hertz-mindlin\"}", "{\"law\": \"volume-linear\"}"));
+  EXPECT_NE(no_kv.find("contact.kv"), std::string::npos) << no_kv;
+  EXPECT_NE(no_kv.find("volume-linear needs kv"), std::string::npos) << no_kv;
+  for (const char* bad : {"0", "-1e9"}) {
+    const std::string msg =
+        error_of("kv-bad", edit("{\"law\": \"hertz-mindlin\"}",
+                                std::string("{\"law\": \"volume-linear\", \"kv\": ") + bad + "}"));
+    EXPECT_NE(msg.find("contact.kv"), std::string::npos) << msg;
+  }
+  const std::string stray = error_of(
+      "kv-stray", edit("{\"law\": \"hertz-mindlin\"}", "{\"law\": \"hertz\", \"kv\": 1e9}"));
+  EXPECT_NE(stray.find("only the volume-linear law takes kv"), std::string::npos) << stray;
+  const std::string spheres =
+      error_of("vh-spheres", edit("{\"law\": \"hertz-mindlin\"}", "{\"law\": \"volume-hertz\"}"));
+  EXPECT_NE(spheres.find("need rigid mesh bodies"), std::string::npos) << spheres;
+  EXPECT_NE(error_of("vh-typo", edit("\"hertz-mindlin\"", "\"volume-herz\""))
+                .find("did you mean \"volume-hertz\""),
+            std::string::npos);
+}
+
+// A mesh body's element_size (issue 11): not positive is refused where the scene is read; one
+// that would make more than ~20 M tetrahedra where the mesh is, naming the scene, the key, the
+// value and the estimate.
+TEST(LoadScene, ElementSizeIsCheckedAgainstTheParticle) {
+  const std::string mesh = std::string(ASPERITY_SOURCE_DIR) + "/data/meshes/particle-seed3-320.off";
+  const auto scene_with = [&](const std::string& size) {
+    return R"({"duration": 0.001, "materials": {"rock": {"density": 2650, "young": 5e10,
+      "poisson": 0.25}}, "bodies": [{"name": "rock", "material": "rock", "model": "fem",
+      "shape": {"type": "mesh", "file": ")" +
+           mesh + R"(", "element_size": )" + size + R"(}}], "contact": {"law": "potential"}})";
+  };
+  std::string msg = error_of("element_size_negative", scene_with("-0.001"));
+  EXPECT_NE(msg.find("bodies[0].shape.element_size: must be > 0"), std::string::npos) << msg;
+  msg = error_of("element_size_tiny", scene_with("1e-6"));
+  EXPECT_NE(msg.find("shape.element_size: 1e-06 m would make about"), std::string::npos) << msg;
+  EXPECT_NE(msg.find("M tetrahedra"), std::string::npos) << msg;
+}

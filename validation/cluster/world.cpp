@@ -24,13 +24,13 @@ int env_int(const char* name, int fallback) {
   return end != nullptr && *end == '\0' && x >= 0 && x < 1'000'000 ? static_cast<int>(x) : fallback;
 }
 
+#if ASPERITY_HAVE_MPI
 // One millisecond: short against a case (tens of milliseconds and up), long enough that a
 // waiting rank costs no measurable CPU.
 void pause() {
   std::this_thread::sleep_for(std::chrono::milliseconds(1));
 }
 
-#if ASPERITY_HAVE_MPI
 // MPI_THREAD_SERIALIZED: any thread may call MPI, one at a time; this mutex is the "one at a
 // time". (MPI_THREAD_MULTIPLE is not needed and not built into every MPI.)
 std::mutex& mpi_mutex() {

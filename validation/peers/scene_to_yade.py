@@ -282,6 +282,12 @@ def main():
     spec_file, out = sys.argv[1], sys.argv[2]
     with open(spec_file) as fh:
         spec = json.load(fh)
+    if spec["law"] == "volume-linear":
+        # Rigid polyhedra: their own translator beside this file (yade_polyhedra.py).
+        sys.path.insert(0, os.path.dirname(os.path.abspath(sys.argv[0])))  # yade -x sets argv[0]
+        import yade_polyhedra
+        yade_polyhedra.run(spec, out)
+        return
     steps = int(spec["steps"])
 
     # 1. Cost: the plain engine list, no Python in the loop.
