@@ -550,8 +550,7 @@ void set_face_stiffness(World& w, const std::vector<Face>& faces) {
   for (std::size_t k = 0; k < faces.size(); ++k) {
     const Face& f = faces[k];
     w.face_nodes.col(static_cast<Eigen::Index>(k)) << f.nodes[0], f.nodes[1], f.nodes[2];
-    w.face_outward.col(static_cast<Eigen::Index>(k)) << f.oriented[0], f.oriented[1],
-        f.oriented[2];
+    w.face_outward.col(static_cast<Eigen::Index>(k)) << f.oriented[0], f.oriented[1], f.oriented[2];
     // Stiffness of the face pressed into another body: the overlap A·d sits in this face's
     // sub-tetrahedron and in the other body's, ∇φ = 1/height in each, so dF/dd = p A (1/h + 1/h').
     const double other = h_min[f.body] < 1e299 ? 1.0 / h_min[f.body] : 0.0;
@@ -572,8 +571,9 @@ void index_faces_by_tet(World& w, const std::vector<int>& face_owner) {
   std::vector<int> fill(w.tet_faces_begin.begin(), w.tet_faces_begin.end() - 1);
   for (std::size_t f = 0; f < face_owner.size(); ++f) {
     const int t = face_owner[f];
-    if (t >= 0) w.tet_faces[static_cast<std::size_t>(fill[static_cast<std::size_t>(t)]++)] =
-        static_cast<int>(f);
+    if (t >= 0)
+      w.tet_faces[static_cast<std::size_t>(fill[static_cast<std::size_t>(t)]++)] =
+          static_cast<int>(f);
   }
 }
 

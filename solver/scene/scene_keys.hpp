@@ -29,8 +29,8 @@ inline constexpr std::string_view kSphere[] = {"type", "radius"};
 inline constexpr std::string_view kPlane[] = {"type", "point", "normal"};
 inline constexpr std::string_view kBox[] = {"type", "min", "max"};
 inline constexpr std::string_view kMesh[] = {"type", "file", "faces", "scale", "element_size"};
-inline constexpr std::string_view kContact[] = {
-    "law", "kn", "kt", "penalty", "penalty_alpha", "kv", "friction", "restitution"};
+inline constexpr std::string_view kContact[] = {"law",           "kn", "kt",       "penalty",
+                                                "penalty_alpha", "kv", "friction", "restitution"};
 inline constexpr std::string_view kRecord[] = {"force_on", "every", "end_after_separation"};
 inline constexpr std::string_view kOutput[] = {"vtk_every", "vtk_format"};
 
