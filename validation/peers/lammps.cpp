@@ -92,8 +92,7 @@ std::string input(const scene::SceneDef& s, const Resolved& r, bool trace) {
   std::ostringstream o;
   o << "# asperity scene \"" << s.name << "\" (validation/peers/lammps.cpp writes this file)\n"
     << "units si\natom_style sphere\natom_modify map array\nboundary m m m\nnewton off\n"
-    << "comm_modify vel yes\n"
-    << box_region(s, static_cast<double>(r.steps) * r.dt) << "create_box " << n << " box\n";
+    << "comm_modify vel yes\n";
   o << atoms_block(s, spheres) << "pair_style granular\n";
   for (int i = 0; i < n; ++i) {
     for (int j = i; j < n; ++j) {
@@ -108,13 +107,18 @@ std::string input(const scene::SceneDef& s, const Resolved& r, bool trace) {
     if (!pl) continue;
     const AxisPlane p = axis_plane(*pl);
     for (int k = 0; k < n; ++k) {
-      const std::string id = "w" + std::to_string(w) + "_" + std::to_string(k + 1);
+      std::ostringstream fix_id;
+      fix_id << 'w' << w << '_' << k + 1;
+      const std::string id = fix_id.str();
       o << "fix " << id << " g" << k + 1 << " wall/gran granular " << model(s, spheres[k], w) << ' '
         << axis_name[p.axis] << ' ' << (p.positive ? num(p.at) : "NULL") << ' '
         << (p.positive ? "NULL" : num(p.at)) << " contacts\n";
       if (w == s.record.body) {
-        for (int c = 2; c <= 4; ++c)
-          wall_force.push_back("f_" + id + "[" + std::to_string(c) + "]");
+        for (int c = 2; c <= 4; ++c) {
+          std::ostringstream col;
+          col << "f_" << id << '[' << c << ']';
+          wall_force.push_back(col.str());
+        }
       }
     }
   }
@@ -138,6 +142,9 @@ PeerTrace run(const scene::SceneDef& s, const Resolved& r, const fs::path& exe,
               const fs::path& dir) {
   using namespace lammps_family;
   // 1. Cost: the plain run, no dump. 2. The trace: the same run dumping every step.
+  const std::vector<int> atoms = free_spheres(s);
+  write_file(dir / "atoms.data", data_file(s, atoms, static_cast<int>(atoms.size()),
+                                           static_cast<double>(r.steps) * r.dt));
   write_file(dir / "in.timing", input(s, r, false));
   write_file(dir / "in.trace", input(s, r, true));
   run_input(exe, dir, "in.timing", "timing.log", "lammps");

@@ -103,38 +103,48 @@ std::string num(double x) {
   return buf;
 }
 
-std::string box_region(const scene::SceneDef& s, double duration) {
+std::string data_file(const scene::SceneDef& s, const std::vector<int>& spheres, int types,
+                      double duration) {
+  // The box holds every sphere over the run (boundary m m m shrink-wraps beyond it anyway).
   Vec3 lo = Vec3::Constant(1e300), hi = Vec3::Constant(-1e300);
-  for (const auto& b : s.bodies) {
-    const auto* sp = std::get_if<scene::SphereShape>(&b.shape);
-    if (!sp) continue;
+  for (int k : spheres) {
+    const scene::BodyDef& b = s.bodies[k];
+    const double rad = std::get<scene::SphereShape>(b.shape).radius;
     const Vec3 end = b.position + b.velocity * duration;
-    lo = lo.cwiseMin(b.position.cwiseMin(end) - Vec3::Constant(2 * sp->radius));
-    hi = hi.cwiseMax(b.position.cwiseMax(end) + Vec3::Constant(2 * sp->radius));
+    lo = lo.cwiseMin(b.position.cwiseMin(end) - Vec3::Constant(2 * rad));
+    hi = hi.cwiseMax(b.position.cwiseMax(end) + Vec3::Constant(2 * rad));
   }
   std::ostringstream o;
-  o << "region box block " << num(lo.x()) << ' ' << num(hi.x()) << ' ' << num(lo.y()) << ' '
-    << num(hi.y()) << ' ' << num(lo.z()) << ' ' << num(hi.z()) << " units box\n";
+  o << "asperity scene " << s.name << "\n\n"
+    << spheres.size() << " atoms\n"
+    << types << " atom types\n"
+    << num(lo.x()) << ' ' << num(hi.x()) << " xlo xhi\n"
+    << num(lo.y()) << ' ' << num(hi.y()) << " ylo yhi\n"
+    << num(lo.z()) << ' ' << num(hi.z()) << " zlo zhi\n\nAtoms\n\n";
+  for (std::size_t k = 0; k < spheres.size(); ++k) {
+    const scene::BodyDef& b = s.bodies[spheres[k]];
+    // atom-ID atom-type diameter density x y z (atom_style sphere / granular)
+    o << k + 1 << ' ' << k + 1 << ' ' << num(2 * std::get<scene::SphereShape>(b.shape).radius)
+      << ' ' << num(s.materials[b.material].density) << ' ' << num(b.position.x()) << ' '
+      << num(b.position.y()) << ' ' << num(b.position.z()) << "\n";
+  }
+  o << "\nVelocities\n\n";
+  for (std::size_t k = 0; k < spheres.size(); ++k) {
+    const scene::BodyDef& b = s.bodies[spheres[k]];
+    o << k + 1 << ' ' << num(b.velocity.x()) << ' ' << num(b.velocity.y()) << ' '
+      << num(b.velocity.z()) << ' ' << num(b.angular_velocity.x()) << ' '
+      << num(b.angular_velocity.y()) << ' ' << num(b.angular_velocity.z()) << "\n";
+  }
   return o.str();
 }
 
 std::string atoms_block(const scene::SceneDef& s, const std::vector<int>& spheres) {
   std::ostringstream o;
+  o << "read_data atoms.data\n";
   double rmin = 1e300;
   for (std::size_t k = 0; k < spheres.size(); ++k) {
-    const scene::BodyDef& b = s.bodies[spheres[k]];
-    const double rad = std::get<scene::SphereShape>(b.shape).radius;
-    const std::size_t id = k + 1;
-    rmin = std::min(rmin, rad);
-    o << "create_atoms " << id << " single " << num(b.position.x()) << ' ' << num(b.position.y())
-      << ' ' << num(b.position.z()) << " units box\n"
-      << "set atom " << id << " diameter " << num(2 * rad) << " density "
-      << num(s.materials[b.material].density) << "\n"
-      << "group g" << id << " id " << id << "\n"
-      << "velocity g" << id << " set " << num(b.velocity.x()) << ' ' << num(b.velocity.y()) << ' '
-      << num(b.velocity.z()) << " units box\n"
-      << "set atom " << id << " omega " << num(b.angular_velocity.x()) << ' '
-      << num(b.angular_velocity.y()) << ' ' << num(b.angular_velocity.z()) << "\n";
+    rmin = std::min(rmin, std::get<scene::SphereShape>(s.bodies[spheres[k]].shape).radius);
+    o << "group g" << k + 1 << " id " << k + 1 << "\n";
   }
   // Skin: half the smallest radius, checked every step (a pair is never missed).
   o << "neighbor " << num(0.5 * rmin) << " bin\nneigh_modify delay 0 every 1 check yes\n";

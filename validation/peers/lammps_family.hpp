@@ -34,11 +34,12 @@ double pair_young_eff(const scene::SceneDef& s, int a, int b);
 double pair_shear_eff(const scene::SceneDef& s, int a, int b);
 double pair_friction(const scene::SceneDef& s, int a, int b);
 
-// The region that holds every sphere over the run (boundary m m m shrink-wraps beyond it).
-std::string box_region(const scene::SceneDef& s, double duration);
+// The data file (atoms.data) of the free spheres: atom k + 1 of type k + 1, diameter, density,
+// position, velocity and spin; its box holds every sphere over `duration`.
+std::string data_file(const scene::SceneDef& s, const std::vector<int>& spheres, int types,
+                      double duration);
 
-// create_atoms, diameter, density, velocity and spin of each free sphere (atom k + 1, type k + 1,
-// group gK+1) and the neighbour settings. Returns the smallest radius.
+// read_data atoms.data, a group gK per atom, the neighbour settings.
 std::string atoms_block(const scene::SceneDef& s, const std::vector<int>& spheres);
 
 // Number format that round-trips a double.

@@ -65,7 +65,7 @@ std::string input(const scene::SceneDef& s, const Resolved& r, bool trace) {
   o << "# asperity scene \"" << s.name << "\" (validation/peers/liggghts.cpp writes this file)\n"
     << "units si\nhard_particles yes\natom_style granular\natom_modify map array\n"
     << "boundary m m m\nnewton off\ncommunicate single vel yes\n"
-    << box_region(s, static_cast<double>(r.steps) * r.dt) << "create_box " << nt << " box\n"
+
     << atoms_block(s, spheres);
   auto per_type = [&](const char* name, auto value) {
     o << "fix m_" << name << " all property/global " << name << " peratomtype";
@@ -111,13 +111,18 @@ std::string input(const scene::SceneDef& s, const Resolved& r, bool trace) {
   std::vector<std::string> wall_force;
   for (std::size_t k = 0; k < walls.size(); ++k) {
     const AxisPlane p = axis_plane(std::get<scene::PlaneShape>(s.bodies[walls[k]].shape));
-    const std::string id = "w" + std::to_string(k);
+    std::ostringstream fix_id;
+    fix_id << 'w' << k;
+    const std::string id = fix_id.str();
     o << "fix " << id << " all wall/gran model " << model << " tangential history primitive type "
       << spheres.size() + k + 1 << ' ' << axis_name[p.axis] << ' ' << num(p.at)
       << " store_force yes limitForce on\n";
     if (walls[k] == s.record.body) {
-      for (int c = 1; c <= 3; ++c)
-        wall_force.push_back("f_force_" + id + "[" + std::to_string(c) + "]");
+      for (int c = 1; c <= 3; ++c) {
+        std::ostringstream col;
+        col << "f_force_" << id << '[' << c << ']';
+        wall_force.push_back(col.str());
+      }
     }
   }
   const double g = s.gravity.norm();
@@ -141,6 +146,12 @@ std::string input(const scene::SceneDef& s, const Resolved& r, bool trace) {
 PeerTrace run(const scene::SceneDef& s, const Resolved& r, const fs::path& exe,
               const fs::path& dir) {
   using namespace lammps_family;
+  const std::vector<int> atoms = free_spheres(s);
+  int walls = 0;  // each plane is an atom type of its own (its material)
+  for (const scene::BodyDef& b : s.bodies)
+    walls += std::holds_alternative<scene::PlaneShape>(b.shape) ? 1 : 0;
+  write_file(dir / "atoms.data", data_file(s, atoms, static_cast<int>(atoms.size()) + walls,
+                                           static_cast<double>(r.steps) * r.dt));
   write_file(dir / "in.timing", input(s, r, false));
   write_file(dir / "in.trace", input(s, r, true));
   run_input(exe, dir, "in.timing", "timing.log", "liggghts");
