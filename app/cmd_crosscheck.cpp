@@ -37,6 +37,9 @@ void add_crosscheck_command(CLI::App& app, Action& action) {
       ->check(CLI::PositiveNumber);
   cc->add_option("--junit", args->o.junit,
                  "Also write JUnit XML: one testcase per peer and compared quantity");
+  cc->add_flag("--only-expressible", args->o.only_expressible,
+               "Run only the peers that can express the scene; list the others with their reason "
+               "in comparison.json (\"not_run\") instead of exit 2");
   cc->add_flag("-q,--quiet", args->o.quiet, "No summary lines on stderr");
   cc->callback([args, &action] {
     action = [args] {

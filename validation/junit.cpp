@@ -40,11 +40,12 @@ std::string xml_escape(const std::string& s) {
 
 void write_junit(const std::filesystem::path& file, const std::string& suite,
                  const std::vector<JUnitCase>& cases) {
-  int failures = 0, errors = 0;
+  int failures = 0, errors = 0, skipped = 0;
   double seconds = 0;
   for (const JUnitCase& c : cases) {
     failures += c.failed && !c.error ? 1 : 0;
     errors += c.error ? 1 : 0;
+    skipped += c.skipped ? 1 : 0;
     seconds += c.seconds;
   }
   std::ostringstream x;
@@ -52,8 +53,8 @@ void write_junit(const std::filesystem::path& file, const std::string& suite,
     << "<testsuites tests=\"" << cases.size() << "\" failures=\"" << failures << "\" errors=\""
     << errors << "\">\n"
     << "  <testsuite name=\"" << xml_escape(suite) << "\" tests=\"" << cases.size()
-    << "\" failures=\"" << failures << "\" errors=\"" << errors << "\" time=\"" << seconds
-    << "\">\n";
+    << "\" failures=\"" << failures << "\" errors=\"" << errors << "\" skipped=\"" << skipped
+    << "\" time=\"" << seconds << "\">\n";
   for (const JUnitCase& c : cases) {
     x << "    <testcase classname=\"" << xml_escape(c.classname) << "\" name=\""
       << xml_escape(c.name) << "\" time=\"" << c.seconds << "\"";
@@ -62,7 +63,9 @@ void write_junit(const std::filesystem::path& file, const std::string& suite,
       continue;
     }
     x << ">\n";
-    if (c.error || c.failed) {
+    if (c.skipped) {
+      x << "      <skipped message=\"" << xml_escape(c.message) << "\"/>\n";
+    } else if (c.error || c.failed) {
       const char* tag = c.error ? "error" : "failure";
       x << "      <" << tag << " message=\"" << xml_escape(c.message) << "\">"
         << xml_escape(c.details) << "</" << tag << ">\n";

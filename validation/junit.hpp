@@ -14,6 +14,7 @@ struct JUnitCase {
   double seconds = 0;     // CPU time the case cost (shared by its checks)
   bool failed = false;    // a check that missed its expectation: <failure>
   bool error = false;     // the run itself failed (a peer or solver failure): <error>
+  bool skipped = false;   // not run, for the reason in `message`: <skipped>
   std::string message;    // one line: measured, expected, tolerance
   std::string details;    // the tolerance's reason, or the failure's text
 };

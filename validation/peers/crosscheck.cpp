@@ -69,11 +69,18 @@ int crosscheck(const CrosscheckOptions& o) {
   // Every peer is found and asked first: bad input is reported before anything runs or is written.
   if (o.peers.empty()) throw InputError("crosscheck: --peer: name at least one peer");
   std::vector<Planned> plan;
+  std::vector<std::pair<std::string, std::string>> not_run;  // peer, why it cannot express s
   for (const std::string& name : o.peers) {
     const Adapter& a = find_adapter(name);
     for (const Planned& p : plan)
       if (p.adapter == &a) throw InputError("--peer " + name + ": named twice");
-    a.check(s);
+    try {
+      a.check(s);
+    } catch (const InputError& e) {
+      if (!o.only_expressible) throw;
+      not_run.emplace_back(name, e.what());
+      continue;
+    }
     const auto it = o.programs.find(name);
     plan.push_back({&a, peer_executable(a, it == o.programs.end() ? "" : it->second)});
   }
@@ -111,6 +118,10 @@ int crosscheck(const CrosscheckOptions& o) {
   c["steps"] = resolved.steps;
   c["peers"] = Json::array();
   for (const Planned& p : plan) c["peers"].push_back(p.adapter->name);
+  if (!not_run.empty()) {
+    c["not_run"] = Json::object();
+    for (const auto& [name, why] : not_run) c["not_run"][name] = why;
+  }
   c["status"] = {{"asperity", a.status}};
   for (const auto& [name, summary] : done) c["status"][name] = summary.at("status");
   for (const auto& [name, why] : failed) c["status"][name] = "failed: " + why;
@@ -142,6 +153,12 @@ int crosscheck(const CrosscheckOptions& o) {
   // The gate: per peer, the three contract quantities within max_rel_diff and the same status.
   std::vector<validation::JUnitCase> junit;
   bool passed = failed.empty();
+  for (const auto& [name, why] : not_run) {
+    junit.push_back({.classname = s.name + "." + name,
+                     .name = "run",
+                     .skipped = true,
+                     .message = name + " not run: " + why});
+  }
   for (const auto& [name, why] : failed) {
     junit.push_back({.classname = s.name + "." + name,
                      .name = "run",
@@ -191,7 +208,7 @@ int crosscheck(const CrosscheckOptions& o) {
                 << name << "; CPU " << cpu_a << " s vs " << summary.at("cpu_seconds").get<double>()
                 << " s\n";
     }
-    std::cerr << "-> " << o.out.string() << "\n";
+    if (failed.empty()) std::cerr << "-> " << o.out.string() << "\n";
   }
   if (!failed.empty()) return kExitFailure;
   return passed || !o.max_rel_diff ? kExitOk : kExitFailure;

@@ -18,6 +18,8 @@ struct CrosscheckOptions {
   std::map<std::string, std::string> programs;  // peer -> executable, overriding its default
   std::optional<double> max_rel_diff;           // gate peak force, impulse, duration
   std::optional<std::filesystem::path> junit;   // JUnit XML of the gate
+  bool only_expressible = false;  // a peer that cannot express the scene is listed with its
+                                  // reason in comparison.json ("not_run"), not exit 2 (tables)
   bool quiet = false;
 };
 

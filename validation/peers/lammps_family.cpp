@@ -15,10 +15,6 @@ namespace fs = std::filesystem;
 
 void check_common(const scene::SceneDef& s, const char* peer) {
   const std::string where = s.file.string() + ": ";
-  if (s.contact.law == scene::ContactLaw::potential) {
-    throw InputError(where + "contact.law: " + peer +
-                     ": \"potential\" (Munjiza) has no counterpart in its granular pair styles");
-  }
   for (std::size_t k = 0; k < s.bodies.size(); ++k) {
     const scene::BodyDef& b = s.bodies[k];
     const std::string at = where + "bodies[" + std::to_string(k) + "] \"" + b.name + "\": ";
@@ -47,6 +43,10 @@ void check_common(const scene::SceneDef& s, const char* peer) {
                        ": a fixed sphere is not mapped (fix freeze would zero the force that is "
                        "recorded on it)");
     }
+  }
+  if (s.contact.law == scene::ContactLaw::potential) {
+    throw InputError(where + "contact.law: " + peer +
+                     ": \"potential\" (Munjiza) has no counterpart in its granular pair styles");
   }
 }
 

@@ -26,11 +26,6 @@ Json vec(const Vec3& v) {
 // normal to no axis, a damped linear law).
 void check(const scene::SceneDef& s) {
   const std::string where = s.file.string() + ": ";
-  if (s.contact.law == scene::ContactLaw::potential) {
-    throw InputError(where +
-                     "contact.law: yade: \"potential\" has no YADE counterpart in the cross-check "
-                     "(spheres, planes and boxes with hertz, hertz-mindlin or linear)");
-  }
   for (std::size_t k = 0; k < s.bodies.size(); ++k) {
     const scene::BodyDef& b = s.bodies[k];
     const std::string at = where + "bodies[" + std::to_string(k) + "] \"" + b.name + "\": ";
@@ -38,6 +33,11 @@ void check(const scene::SceneDef& s) {
       throw InputError(at + "model: yade: the cross-check runs rigid bodies only");
     if (std::holds_alternative<scene::MeshShape>(b.shape))
       throw InputError(at + "shape: yade: the cross-check covers spheres, planes and boxes");
+  }
+  if (s.contact.law == scene::ContactLaw::potential) {
+    throw InputError(where +
+                     "contact.law: yade: \"potential\" has no YADE counterpart in the cross-check "
+                     "(spheres, planes and boxes with hertz, hertz-mindlin or linear)");
   }
 }
 
