@@ -27,4 +27,9 @@ inline HertzImpact hertz_impact(double mass_eff, double radius_eff, double young
   return h;
 }
 
+// The Hertz contact duration alone, s: t_c = 2.9432 δ_max / v = 2.868 (m*² / (R* E*² v))^{1/5}.
+inline double hertz_contact_time(double mass_eff, double radius_eff, double young_eff, double v) {
+  return hertz_impact(mass_eff, radius_eff, young_eff, v).contact_duration;
+}
+
 }  // namespace asperity::contact

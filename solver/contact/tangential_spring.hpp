@@ -24,6 +24,16 @@ struct TangentialForce {
   bool sliding = false;
 };
 
+// Carries last step's spring force into the current tangent plane (normal n, unit), keeping its
+// magnitude: the contact frame turned, the stored elastic force did not change (the rotation
+// step of Luding 2008, Granular Matter 10:235, §2.2.2, and of YADE's ScGeom::rotate).
+inline Vec3 rotate_into_tangent_plane(const Vec3& spring, const Vec3& n) {
+  const double mag = spring.norm();
+  Vec3 s = spring - spring.dot(n) * n;
+  if (const double sn = s.norm(); sn > 0) s *= mag / sn;
+  return s;
+}
+
 // spring: the previous spring force already rotated into the current tangent plane.
 // slip_velocity: tangential velocity of body 1 relative to body 2 at the contact point, m/s.
 // Incremental law F_s ← F_s − k_t v_t dt. Sticking (|F_s + F_d| ≤ μ F_n) the force is spring plus

@@ -27,5 +27,13 @@ struct InputError : std::runtime_error {
 
 }  // namespace asperity
 
+// Two tiers (as MFEM's MFEM_VERIFY / MFEM_ASSERT): ASPERITY_CHECK is always on, for what must never
+// happen whatever the input; ASPERITY_ASSERT is compiled only without NDEBUG (Debug builds), for
+// checks too costly for the hot paths of a Release build.
 #define ASPERITY_CHECK(cond) \
   ((cond) ? static_cast<void>(0) : ::asperity::invariant_failed(#cond, __FILE__, __LINE__))
+#ifdef NDEBUG
+#define ASPERITY_ASSERT(cond) static_cast<void>(0)
+#else
+#define ASPERITY_ASSERT(cond) ASPERITY_CHECK(cond)
+#endif

@@ -5,6 +5,7 @@
 #include <cmath>
 
 #include "contact/hertz.hpp"
+#include "contact/hertz_mindlin.hpp"
 #include "contact/linear_spring_dashpot.hpp"
 #include "contact/tangential_spring.hpp"
 #include "core/error.hpp"
@@ -24,37 +25,52 @@ struct ContactGeometry {
 };
 
 struct ContactOutcome {
-  Vec3 force = Vec3::Zero();  // on body 1, N
-  double rate = 0;            // δ̇, m/s
-  double energy = 0;          // stored, J
-  double dissipated = 0;      // this step, J
+  Vec3 force = Vec3::Zero();         // on body 1, N
+  Vec3 normal_force = Vec3::Zero();  // its normal part (elastic + normal damping), N
+  double rate = 0;                   // δ̇, m/s
+  double energy = 0;                 // stored, J
+  double dissipated = 0;             // this step, J
 };
 
-// Normal and tangential force on body 1 for one touching contact (pure in its arguments).
+// Normal and tangential force on body 1 for one touching contact: the scene's law (a pure
+// function in contact/) applied to this pair's geometry, effective quantities and history.
 ContactOutcome contact_force(const SphereWorld& world, const ContactGeometry& g,
                              const PairConstants& pc, const Vec3& v_rel, double rate_end,
                              Vec3& spring, double& viscous, double dt) {
   ContactOutcome out;
   const Vec3& n = g.normal;
   out.rate = -v_rel.dot(n);
+  const Vec3 slip = v_rel - v_rel.dot(n) * n;
   contact::NormalForce fn;
-  double kt = 0, ct = 0;
-  if (world.law.normal == contact::NormalLaw::hertz) {
-    const contact::HertzParams p{.young_eff = pc.young_eff,
-                                 .radius_eff = g.radius_eff,
-                                 .mass_eff = g.mass_eff,
-                                 .zeta = pc.zeta};
-    fn = contact::hertz_normal(g.overlap, rate_end, p);
-    // Mindlin no-slip stiffness k_t = 8 G* a (Mindlin 1949); damping of the same Tsuji form.
-    kt = 8.0 * pc.shear_eff * std::sqrt(g.radius_eff * g.overlap);
-    ct = pc.zeta * std::sqrt(g.mass_eff * kt / 1.5);
+  contact::TangentialForce ft;
+  if (world.law.normal == contact::NormalLaw::hertz && world.law.tangential) {
+    const contact::HertzMindlinForce f = contact::hertz_mindlin(
+        g.overlap, rate_end, slip, contact::rotate_into_tangent_plane(spring, n), dt,
+        {.young_eff = pc.young_eff,
+         .shear_eff = pc.shear_eff,
+         .radius_eff = g.radius_eff,
+         .mass_eff = g.mass_eff,
+         .zeta = pc.zeta,
+         .friction = pc.friction});
+    fn = f.normal;
+    ft = f.tangential;
+  } else if (world.law.normal == contact::NormalLaw::hertz) {
+    fn = contact::hertz_normal(g.overlap, rate_end,
+                               {.young_eff = pc.young_eff,
+                                .radius_eff = g.radius_eff,
+                                .mass_eff = g.mass_eff,
+                                .zeta = pc.zeta});
   } else {
-    const contact::LinearParams p{.kn = world.law.kn, .mass_eff = g.mass_eff, .zeta = pc.zeta};
-    fn = contact::linear_normal(g.overlap, rate_end, p);
-    kt = world.law.kt;
-    ct = pc.zeta * std::sqrt(g.mass_eff * kt);
+    fn = contact::linear_normal(g.overlap, rate_end,
+                                {.kn = world.law.kn, .mass_eff = g.mass_eff, .zeta = pc.zeta});
+    // The linear law's tangential spring: constant k_t, dashpot ζ √(m* k_t).
+    ft = contact::tangential_spring(contact::rotate_into_tangent_plane(spring, n), slip, dt,
+                                    fn.force,
+                                    {.stiffness = world.law.kt,
+                                     .damping = pc.zeta * std::sqrt(g.mass_eff * world.law.kt),
+                                     .friction = pc.friction});
   }
-  out.force = fn.force * n;
+  out.normal_force = fn.force * n;
   out.energy = fn.energy;
   // Work of the non-elastic part of the normal force over this step's overlap change, by the
   // trapezoidal rule (the rule velocity Verlet applies to the kinetic energy), so the energy
@@ -62,19 +78,10 @@ ContactOutcome contact_force(const SphereWorld& world, const ContactGeometry& g,
   const double viscous_now = fn.force - fn.elastic;
   out.dissipated = 0.5 * (viscous + viscous_now) * out.rate * dt;
   viscous = viscous_now;
-  if (world.law.tangential) {
-    const Vec3 vt = v_rel - v_rel.dot(n) * n;
-    // Carry the spring into the current tangent plane, keeping its magnitude.
-    const double mag = spring.norm();
-    Vec3 s = spring - spring.dot(n) * n;
-    if (const double sn = s.norm(); sn > 0) s *= mag / sn;
-    const contact::TangentialParams tp{.stiffness = kt, .damping = ct, .friction = pc.friction};
-    const contact::TangentialForce ft = contact::tangential_spring(s, vt, dt, fn.force, tp);
-    spring = ft.spring;
-    out.force += ft.force;
-    out.energy += ft.energy;
-    out.dissipated += ft.dissipated;
-  }
+  spring = ft.spring;
+  out.force = out.normal_force + ft.force;
+  out.energy += ft.energy;
+  out.dissipated += ft.dissipated;
   return out;
 }
 
@@ -104,16 +111,6 @@ bool needs_rebuild(const SphereWorld& world) {
   return false;
 }
 
-// Keeps the recorded body's contact timing and restitution bookkeeping.
-void note_record(SphereWorld& w, bool involved, double overlap, bool was, bool now, double rate,
-                 const Vec3& force_on_record) {
-  if (!involved) return;
-  w.record_overlap = std::max(w.record_overlap, overlap);
-  w.record_force += force_on_record;
-  if (!was && now && w.record_contacts_started++ == 0) w.record_approach_speed = rate;
-  if (was && !now && w.record_contacts_ended++ == 0) w.record_separation_speed = -rate;
-}
-
 void compute_forces(SphereWorld& w, double dt) {
   // Dashpots see the velocity at the end of the step, predicted with last step's acceleration
   // (v_{n+1} ≈ v_{n+½} + ½ dt a_n): a second-order estimate where the half-step velocity alone
@@ -125,8 +122,7 @@ void compute_forces(SphereWorld& w, double dt) {
   w.force.setZero();
   w.torque.setZero();
   w.contact_energy = 0;
-  w.record_force.setZero();
-  w.record_overlap = -1e300;
+  w.contacts.reset(w.contacts.size());
   const int nm = static_cast<int>(w.materials.size());
 
   for (PairContact& p : w.pairs) {
@@ -134,16 +130,8 @@ void compute_forces(SphereWorld& w, double dt) {
     const Vec3 d = w.x.col(i) - w.x.col(j);
     const double dist = d.norm();
     const double overlap = w.radius[i] + w.radius[j] - dist;
-    const bool involved = w.body[i] == w.record_body || w.body[j] == w.record_body;
-    const bool was = p.touching;
     if (overlap <= 0 || dist == 0) {
-      if (was) {
-        const Vec3 n = d / dist;
-        const Vec3 v_rel = w.v.col(i) - w.v.col(j);
-        note_record(w, involved, overlap, true, false, -v_rel.dot(n), Vec3::Zero());
-      } else {
-        note_record(w, involved, overlap, false, false, 0, Vec3::Zero());
-      }
+      w.contacts.gap(w.body[i], w.body[j], overlap);
       p.touching = false;
       p.spring.setZero();
       p.viscous = 0;
@@ -172,8 +160,7 @@ void compute_forces(SphereWorld& w, double dt) {
     w.dissipated += c.dissipated;
     ++w.contact_updates;
     p.touching = true;
-    const Vec3 on_record = w.body[i] == w.record_body ? c.force : Vec3(-c.force);
-    note_record(w, involved, overlap, was, true, c.rate, on_record);
+    w.contacts.add(w.body[i], w.body[j], c.force, c.normal_force, overlap);
   }
 
   const int n = w.size();
@@ -207,11 +194,8 @@ void compute_forces(SphereWorld& w, double dt) {
           overlap = w.radius[i] + std::min(dl, dh);
         }
       }
-      const bool involved = w.body[i] == w.record_body || wall.body == w.record_body;
-      const bool was = h.touching;
-      const Vec3 v_rel_c = w.v.col(i);
       if (overlap <= 0) {
-        note_record(w, involved, overlap, was, false, -v_rel_c.dot(normal), Vec3::Zero());
+        w.contacts.gap(w.body[i], wall.body, overlap);
         h.touching = false;
         h.spring.setZero();
         h.viscous = 0;
@@ -234,8 +218,7 @@ void compute_forces(SphereWorld& w, double dt) {
       w.dissipated += c.dissipated;
       ++w.contact_updates;
       h.touching = true;
-      const Vec3 on_record = w.body[i] == w.record_body ? c.force : Vec3(-c.force);
-      note_record(w, involved, overlap, was, true, c.rate, on_record);
+      w.contacts.add(w.body[i], wall.body, c.force, c.normal_force, overlap);
     }
   }
 }
@@ -266,6 +249,18 @@ void initialise(SphereWorld& world) {
   world.skin = n > 0 ? 0.2 * r_min : 0;
   world.wall_contacts.assign(world.walls.size() * n, {});
   world.x_initial = world.x;
+  // Contact output is per scene body: every sphere and wall must name its body.
+  int bodies = 0;
+  ASPERITY_CHECK(world.body.size() == static_cast<std::size_t>(n));
+  for (int b : world.body) {
+    ASPERITY_CHECK(b >= 0);
+    bodies = std::max(bodies, b + 1);
+  }
+  for (const Wall& wall : world.walls) {
+    ASPERITY_CHECK(wall.body >= 0);
+    bodies = std::max(bodies, wall.body + 1);
+  }
+  world.contacts.reset(bodies);
   rebuild_pairs(world);
   compute_forces(world, 0.0);
 }
@@ -302,8 +297,8 @@ void step(SphereWorld& world, double dt) {
   ++world.steps;
 }
 
-EnergyTerms energy(const SphereWorld& world) {
-  EnergyTerms e;
+EnergyBalance energy(const SphereWorld& world) {
+  EnergyBalance e;
   for (int i = 0; i < world.size(); ++i) {
     if (world.fixed[i]) continue;
     e.kinetic += 0.5 * world.mass[i] * world.v.col(i).squaredNorm() +

@@ -8,7 +8,10 @@
 #include <Eigen/Core>
 
 #include "contact/restitution_damping.hpp"
+#include "core/body_contacts.hpp"
+#include "core/energy.hpp"
 #include "core/material.hpp"
+#include "core/profile.hpp"
 #include "core/vec.hpp"
 
 namespace asperity::dem {
@@ -46,13 +49,6 @@ struct WallContact {
   Vec3 spring = Vec3::Zero();
   double viscous = 0;
   bool touching = false;
-};
-
-// Ticks spent in each phase of step() (core/ticks.hpp); the runner converts them to seconds.
-struct Profile {
-  std::uint64_t broad_phase = 0;
-  std::uint64_t contact = 0;
-  std::uint64_t integrate = 0;
 };
 
 // Material-pair constants, computed once (index a * n_materials + b).
@@ -93,14 +89,8 @@ struct SphereWorld {
   long contact_updates = 0;      // pair evaluations with positive overlap, accumulated
   double max_overlap_ratio = 0;  // largest overlap / smaller radius seen; > 1: passed through
 
-  // The recorded body (scene index): total contact force on it, and the largest signed overlap
-  // among its candidate contacts (negative: the smallest gap), to time contact start and end.
-  int record_body = -1;
-  Vec3 record_force = Vec3::Zero();
-  double record_overlap = -1e300;
-  double record_approach_speed = 0;  // relative normal speed at the first contact's start
-  double record_separation_speed = 0;
-  int record_contacts_started = 0, record_contacts_ended = 0;
+  // This step's contact output per scene body (spheres and walls alike; core/body_contacts.hpp).
+  BodyContacts contacts;
 
   double time = 0;
   long steps = 0;
@@ -116,10 +106,7 @@ void initialise(SphereWorld& world);
 // One velocity-Verlet step: half kick, drift, broad phase, contact forces, half kick.
 void step(SphereWorld& world, double dt);
 
-struct EnergyTerms {
-  double kinetic = 0, contact = 0, gravity = 0, dissipated = 0;
-  double total() const { return kinetic + contact + gravity + dissipated; }
-};
-EnergyTerms energy(const SphereWorld& world);
+// Kinetic (translation and rotation), contact, gravity and dissipated terms; no elastic term.
+EnergyBalance energy(const SphereWorld& world);
 
 }  // namespace asperity::dem

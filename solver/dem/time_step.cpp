@@ -8,6 +8,7 @@
 #include <vector>
 
 #include "contact/hertz_impact.hpp"
+#include "core/central_difference.hpp"
 
 namespace asperity::dem {
 
@@ -76,7 +77,7 @@ CriticalStep critical_step(const SphereWorld& w) {
       omega = std::sqrt(k_max / m_eff);
       xi = zeta_max / (2 * std::sqrt(1.5));
     }
-    if (omega > 0) out.contact = 2 / omega * (std::sqrt(1 + xi * xi) - xi);
+    if (omega > 0) out.contact = damped_critical_step(omega, xi);
   }
   // Rigid spheres carry no elastic waves: the contact oscillator is the central-difference limit.
   // The Rayleigh step (a packing heuristic) bounds the step only when no contact can be sized.

@@ -4,7 +4,6 @@
 
 #include <algorithm>
 #include <array>
-#include <chrono>
 #include <cmath>
 #include <map>
 #include <sstream>
@@ -12,15 +11,11 @@
 #include "contact/munjiza_potential.hpp"
 #include "contact/tangential_spring.hpp"
 #include "core/error.hpp"
+#include "core/ticks.hpp"
 #include "fdem/broad_phase.hpp"
 
 namespace asperity::fdem {
 namespace {
-
-using Clock = std::chrono::steady_clock;
-double seconds_since(Clock::time_point t0) {
-  return std::chrono::duration<double>(Clock::now() - t0).count();
-}
 
 double tet_volume(const Vec3& a, const Vec3& b, const Vec3& c, const Vec3& d) {
   return (b - a).cross(c - a).dot(d - a) / 6.0;
@@ -102,11 +97,10 @@ bool boxes_overlap(const contact::TetNodes& a, const contact::TetNodes& b) {
   return !((alo.array() > bhi.array()).any() || (blo.array() > ahi.array()).any());
 }
 
-// Contact forces of every candidate pair into w.f, with friction, energy and the record.
+// Contact forces of every candidate pair into w.f, with friction, energy and the per-body output.
 void contact_forces(World& w, double dt) {
   w.contact_energy = 0;
-  w.record_force.setZero();
-  w.record_depth = -1e300;
+  w.contacts.reset(static_cast<int>(w.bodies.size()));
   w.penetration = 0;
   for (TetPair& p : w.pairs) {
     const contact::TetNodes a = gather(w, p.a), b = gather(w, p.b);
@@ -147,11 +141,9 @@ void contact_forces(World& w, double dt) {
       }
       const Vec3 vr = va - vb;
       const Vec3 vt = vr - vr.dot(n) * n;
-      const double mag = p.spring.norm();
-      Vec3 s = p.spring - p.spring.dot(n) * n;
-      if (const double sn = s.norm(); sn > 0) s *= mag / sn;
       const contact::TangentialForce ft = contact::tangential_spring(
-          s, vt, dt, fn_mag, {.stiffness = fn_mag / c.depth, .damping = 0, .friction = w.friction});
+          contact::rotate_into_tangent_plane(p.spring, n), vt, dt, fn_mag,
+          {.stiffness = fn_mag / c.depth, .damping = 0, .friction = w.friction});
       p.spring = ft.spring;
       for (int i = 0; i < 4; ++i) {
         on_a[i] += la[i] * ft.force;
@@ -169,10 +161,7 @@ void contact_forces(World& w, double dt) {
       total_a += on_a[i];
     }
     w.contact_energy += c.energy;
-    if (ba == w.record_body || bb == w.record_body) {
-      w.record_force += ba == w.record_body ? total_a : Vec3(-total_a);
-      w.record_depth = std::max(w.record_depth, c.depth);
-    }
+    w.contacts.add(ba, bb, total_a, fn, c.depth);
   }
 }
 
@@ -208,12 +197,12 @@ void reduce_rigid(World& w) {
 
 void compute_forces(World& w, double dt) {
   w.f.setZero();
-  auto t0 = Clock::now();
+  const std::uint64_t t0 = ticks();
   contact_forces(w, dt);
-  w.profile.contact += seconds_since(t0);
-  t0 = Clock::now();
+  const std::uint64_t t1 = ticks();
   internal_forces(w, dt);
-  w.profile.internal += seconds_since(t0);
+  w.profile.contact += t1 - t0;
+  w.profile.internal += ticks() - t1;
 }
 
 // Half kick of every moving body with the current forces.
@@ -250,7 +239,6 @@ void drift(World& w, double dt) {
 World make_world(const WorldDef& def) {
   World w;
   w.gravity = def.gravity;
-  w.record_body = def.record_body;
   int n_nodes = 0;
   for (const BodyDef& b : def.bodies) n_nodes += static_cast<int>(b.mesh.nodes.cols());
   w.x.resize(3, n_nodes);
@@ -282,11 +270,7 @@ World make_world(const WorldDef& def) {
         d.mesh.surface.minCoeff() < 0 || d.mesh.surface.maxCoeff() >= nn) {
       throw InputError(what + ": mesh refers to a node that does not exist");
     }
-    Body body{.name = d.name,
-              .kind = d.kind,
-              .node_begin = offset,
-              .node_end = offset + nn,
-              .young = d.material.young};
+    Body body{.name = d.name, .kind = d.kind, .node_begin = offset, .node_end = offset + nn};
     // The penalty scales with the bodies that deform or move; a fixed block only supplies the
     // target (a stiff steel block must not shrink the step of a softer rock particle).
     if (d.kind != BodyKind::fixed) young_max = std::max(young_max, d.material.young);
@@ -296,7 +280,11 @@ World make_world(const WorldDef& def) {
     // Every body's elements give the lumped masses the contact time step uses (a rigid body's
     // too: constraining nodes to move rigidly only lowers the highest frequency).
     fem::TetElements e = fem::make_tet_elements(w.x, tets, d.material.young, d.material.poisson,
-                                                d.material.density, d.damping, what);
+                                                d.material.density, 0.0, what);
+    if (d.kind == BodyKind::deformable && d.damping_ratio > 0) {
+      // ξ = β ω / 2 for stiffness-proportional damping, at the body's highest element frequency.
+      e.damping = 2 * d.damping_ratio / fem::element_critical_step(e).omega_max;
+    }
     std::vector<double> lumped(n_nodes, 0.0);
     fem::add_lumped_mass(e, lumped);
     Vec3 centre;
@@ -420,28 +408,25 @@ World make_world(const WorldDef& def) {
 
 void step(World& w, double dt) {
   if (!w.failure.empty()) return;
-  auto t0 = Clock::now();
+  const std::uint64_t t0 = ticks();
   kick(w, 0.5 * dt);
   drift(w, dt);
-  w.profile.integrate += seconds_since(t0);
-
-  t0 = Clock::now();
+  const std::uint64_t t1 = ticks();
   if (needs_rebuild(w)) rebuild_pairs(w);
-  w.profile.broad_phase += seconds_since(t0);
-
+  const std::uint64_t t2 = ticks();
   compute_forces(w, dt);  // contact, then internal forces, each timed
-
-  t0 = Clock::now();
+  const std::uint64_t t3 = ticks();
   reduce_rigid(w);
   kick(w, 0.5 * dt);
   for (const RigidBody& rb : w.rigid) place_rigid_nodes(w, rb);
-  w.profile.integrate += seconds_since(t0);
+  w.profile.integrate += (t1 - t0) + (ticks() - t3);
+  w.profile.broad_phase += t2 - t1;
   w.time += dt;
   ++w.steps;
 }
 
-EnergyTerms energy(const World& w) {
-  EnergyTerms e;
+EnergyBalance energy(const World& w) {
+  EnergyBalance e;
   for (int i = 0; i < w.node_count(); ++i) {
     if (w.inv_mass[i] > 0) {
       e.kinetic += 0.5 * w.mass[i] * w.v.col(i).squaredNorm();

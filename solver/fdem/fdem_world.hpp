@@ -8,8 +8,11 @@
 
 #include <Eigen/Core>
 
+#include "core/body_contacts.hpp"
+#include "core/energy.hpp"
 #include "core/material.hpp"
 #include "core/mesh.hpp"
+#include "core/profile.hpp"
 #include "core/vec.hpp"
 #include "fem/tet_elements.hpp"
 
@@ -25,7 +28,10 @@ struct BodyDef {
   Material material;
   Vec3 velocity = Vec3::Zero();          // m/s (deformable: every node; rigid: the centroid)
   Vec3 angular_velocity = Vec3::Zero();  // rad/s, about the centroid
-  double damping = 0;                    // deformable: Kelvin–Voigt β, s (TetElements::damping)
+  // Deformable: damping ratio ξ of the body's highest element mode; make_world turns it into
+  // the stiffness-proportional Kelvin–Voigt β = 2ξ/ω_max (TetElements::damping), so lower modes
+  // get ξ ω/ω_max (Hughes 2000, §9.3.3). 0: undamped.
+  double damping_ratio = 0;
 };
 
 // Penalty contact parameters (contact/munjiza_potential.hpp).
@@ -50,7 +56,6 @@ struct WorldDef {
   std::vector<BodyDef> bodies;
   ContactDef contact;
   Vec3 gravity = Vec3::Zero();  // m/s²
-  int record_body = -1;         // whose total contact force is recorded
 };
 
 struct Body {
@@ -60,7 +65,6 @@ struct Body {
   int elements = -1;                 // deformable: index into World::elements
   int rigid = -1;                    // rigid: index into World::rigid
   double mass = 0;                   // kg (exact, from the tetrahedra)
-  double young = 0;                  // Pa
 };
 
 // 6-DOF state of a rigid polyhedron; its nodes follow x = c + R r.
@@ -80,10 +84,6 @@ struct RigidBody {
 struct TetPair {
   int a = 0, b = 0;
   Vec3 spring = Vec3::Zero();
-};
-
-struct Profile {
-  double broad_phase = 0, contact = 0, internal = 0, integrate = 0;  // s
 };
 
 struct World {
@@ -127,18 +127,16 @@ struct World {
   long contact_evaluations = 0;  // candidate pairs run through the kernel, accumulated
   long contacts_touching = 0;    // of those, in contact
 
-  // The recorded body: total contact force on it, and the deepest penetration among its pairs
-  // (-1e300 when none touches).
-  int record_body = -1;
-  Vec3 record_force = Vec3::Zero();
-  double record_depth = -1e300;
+  // This step's contact output per body (core/body_contacts.hpp): force, its potential (normal)
+  // part, and the deepest overlap among each body's touching pairs.
+  BodyContacts contacts;
 
   // Deepest penetration of the last step relative to the contacting elements: the largest
   // depth / max(height_a, height_b) over the touching pairs (0 when none touches), and the two
   // bodies of that pair. The potential φ at the deepest point is at least this ratio (φ =
   // depth/height in the sub-tetrahedron that holds it, and height ≤ the larger of the two);
   // φ → 1 means a node is reaching an element's centroid, past which the penalty pushes it on
-  // through (run/run_fdem.cpp flags it as runaway penetration).
+  // through (fdem/runaway_penetration.hpp flags it).
   double penetration = 0;
   int penetration_body_a = -1, penetration_body_b = -1;
 
@@ -160,12 +158,8 @@ World make_world(const WorldDef& def);
 // contact forces → internal forces → half kick.
 void step(World& world, double dt);
 
-struct EnergyTerms {
-  double kinetic = 0, elastic = 0, contact = 0, gravity = 0, dissipated = 0;
-  double total() const { return kinetic + elastic + contact + gravity + dissipated; }
-};
 // Elastic and contact terms are those of the last step with want_energy set.
-EnergyTerms energy(const World& world);
+EnergyBalance energy(const World& world);
 
 // Linear momentum of all moving bodies, kg·m/s; centre-of-mass velocity of one body, m/s.
 Vec3 momentum(const World& world);

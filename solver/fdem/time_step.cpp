@@ -11,6 +11,8 @@
 
 #include <Eigen/Eigenvalues>
 
+#include "core/central_difference.hpp"
+
 namespace asperity::fdem {
 
 namespace {
@@ -176,9 +178,7 @@ double rigid_omega2(const World& w, const RigidBody& rb, const ContactFaces& c) 
 }
 
 double damped_step(double omega, double beta) {
-  if (!(omega > 0)) return std::numeric_limits<double>::infinity();
-  const double xi = 0.5 * beta * omega;
-  return 2.0 / omega * (std::sqrt(1 + xi * xi) - xi);
+  return damped_critical_step(omega, 0.5 * beta * omega);  // ξ = β ω / 2 (Kelvin–Voigt)
 }
 
 }  // namespace

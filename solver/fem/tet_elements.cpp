@@ -8,6 +8,7 @@
 
 #include <Eigen/Eigenvalues>
 
+#include "core/central_difference.hpp"
 #include "core/error.hpp"
 
 namespace asperity::fem {
@@ -206,8 +207,7 @@ ElementStep element_critical_step(const TetElements& e,
   }
   out.omega_max = std::sqrt(best);
   if (out.omega_max > 0) {
-    const double xi = 0.5 * e.damping * out.omega_max;
-    out.dt = 2.0 / out.omega_max * (std::sqrt(1 + xi * xi) - xi);
+    out.dt = damped_critical_step(out.omega_max, 0.5 * e.damping * out.omega_max);
   }
   return out;
 }

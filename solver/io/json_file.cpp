@@ -39,6 +39,10 @@ Json read_json_file(const std::filesystem::path& file) {
 }
 
 std::string closest_key(std::string_view key, std::initializer_list<std::string_view> allowed) {
+  return closest_key(key, std::vector<std::string_view>(allowed));
+}
+
+std::string closest_key(std::string_view key, const std::vector<std::string_view>& allowed) {
   std::string best;
   std::size_t best_d = 3;  // suggest only near misses: at most two edits
   for (std::string_view cand : allowed) {

@@ -5,6 +5,7 @@
 #include <initializer_list>
 #include <string>
 #include <string_view>
+#include <vector>
 
 #include <nlohmann/json.hpp>
 
@@ -19,6 +20,7 @@ Json read_json_file(const std::filesystem::path& file);
 
 // Closest of `allowed` to `key` by edit distance, or "" when none is close.
 std::string closest_key(std::string_view key, std::initializer_list<std::string_view> allowed);
+std::string closest_key(std::string_view key, const std::vector<std::string_view>& allowed);
 
 // A cursor on one JSON object inside a file: every accessor validates type and range and throws
 // InputError "FILE: KEY.PATH: problem (got VALUE)".

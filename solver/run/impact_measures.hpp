@@ -1,8 +1,11 @@
-// Measures of the recorded body's force history, shared by every model's runner.
+// Measures of the recorded body's contact history, derived above the worlds from their per-step
+// contact output (core/body_contacts.hpp): the same code for spheres, FEM/DEM and the peers.
 #pragma once
 
 #include <algorithm>
 #include <cmath>
+#include <optional>
+#include <vector>
 
 #include "core/vec.hpp"
 
@@ -72,5 +75,63 @@ struct ImpactMeasures {
   }
   double t_prev_ = 0, f_prev_ = 0, s_prev_ = -1e300, contact_start_ = 0;
 };
+
+// Restitution of the recorded body's first contact, one definition for every model and peer:
+//   e = (v_sep · n) / (−v_app · n),
+// v the recorded body's centre velocity relative to its partner's (run::restitution_partner)
+// just before the first contact began and just after it ended, n the direction of the normal
+// impulse on the recorded body over that contact (the elastic or potential force plus normal
+// damping; friction excluded, so an oblique frictional impact still measures the normal
+// rebound). Whichever body is recorded (the moving one, or the block it strikes) the value is the
+// same. For rigid spheres, whose centre velocities carry the whole normal motion, this is the
+// usual ratio of normal separation and approach speeds.
+class Restitution {
+ public:
+  // Once per step: whether the recorded body touched before and after the step, the relative
+  // velocity before and after it, and the normal force on the recorded body after it.
+  void add(bool touching_before, bool touching_after, const Vec3& v_before, const Vec3& v_after,
+           const Vec3& normal_force, double dt) {
+    if (ended_) return;
+    if (!started_ && touching_after) {
+      started_ = true;
+      v_approach_ = touching_before ? v_after : v_before;
+    }
+    if (started_ && touching_after) normal_impulse_ += normal_force * dt;
+    if (started_ && touching_before && !touching_after) {
+      v_separation_ = v_after;
+      ended_ = true;
+    }
+  }
+  // Empty while the first contact has not ended, or when nothing approached.
+  std::optional<double> value() const {
+    if (!ended_ || !(normal_impulse_.norm() > 0)) return std::nullopt;
+    const Vec3 n = normal_impulse_.normalized();
+    const double in = -v_approach_.dot(n);
+    if (!(in > 0)) return std::nullopt;
+    return v_separation_.dot(n) / in;
+  }
+  bool ended() const { return ended_; }
+
+ private:
+  bool started_ = false, ended_ = false;
+  Vec3 v_approach_ = Vec3::Zero(), v_separation_ = Vec3::Zero();
+  Vec3 normal_impulse_ = Vec3::Zero();
+};
+
+// The partner whose velocity the restitution is measured against (`free`: whether each body
+// moves): for a moving recorded body, the other moving body when there are exactly two, else the
+// fixed targets (−1: velocity zero); for a fixed recorded body, the one moving body (−1 when
+// there are several: no single rebound to measure against it).
+inline int restitution_partner(int record, const std::vector<bool>& free) {
+  std::vector<int> moving;
+  for (std::size_t b = 0; b < free.size(); ++b) {
+    if (free[b]) moving.push_back(static_cast<int>(b));
+  }
+  if (free[static_cast<std::size_t>(record)]) {
+    if (moving.size() == 2) return moving[0] == record ? moving[1] : moving[0];
+    return -1;
+  }
+  return moving.size() == 1 ? moving[0] : -1;
+}
 
 }  // namespace asperity::run

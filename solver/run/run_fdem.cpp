@@ -1,109 +1,30 @@
-// Scene → FEM/DEM world → time loop → measures, for mesh bodies (fdem/fdem_world.hpp).
+// The FEM/DEM path of `asperity run`: mesh bodies (model "rigid" or "fem") against each other
+// and against fixed boxes and planes, in Munjiza's potential contact (fdem/fdem_world.hpp),
+// through the shared step policy, time loop and summary core. Only what is FEM/DEM-specific is
+// here: building the world from the scene, its step prediction, its summary keys.
 #include "run/run_fdem.hpp"
 
 #include <algorithm>
-#include <chrono>
 #include <cmath>
-#include <cstdio>
-#include <ctime>
 #include <optional>
-#include <sstream>
 
 #include "contact/munjiza_potential.hpp"
 #include "core/error.hpp"
+#include "core/format.hpp"
+#include "core/ticks.hpp"
 #include "fdem/fdem_world.hpp"
+#include "fdem/runaway_penetration.hpp"
 #include "fdem/structured_mesh.hpp"
 #include "fdem/time_step.hpp"
 #include "fem/tet_elements.hpp"
-#include "run/impact_measures.hpp"
-#include "run/run_monitor.hpp"
+#include "run/summary.hpp"
+#include "run/time_loop.hpp"
 #if ASPERITY_HAVE_GEOMETRY
 #include "geometry/mesh_pipeline.hpp"
 #endif
 
 namespace asperity::run {
 namespace {
-
-std::string fmt(double x) {
-  std::ostringstream s;
-  s.precision(6);
-  s << x;
-  return s.str();
-}
-
-double cpu_seconds() {
-  return static_cast<double>(std::clock()) / CLOCKS_PER_SEC;
-}
-
-// FEM/DEM default dt_safety (the sphere DEM's 0.01 resolves a Hertz contact in ~200 steps).
-// Here the step is set by element and penalty stiffness, each contact spans thousands of steps
-// at the critical one, and the bound is already conservative (element eigenvalue and
-// Gershgorin bounds), so the FEM/DEM default is 0.5 unless the scene gives its own factor.
-constexpr double kFdemSafety = 0.5;
-// Without a moving deformable body nothing but the contact springs sets the step, and the rigid
-// bound over the pressed patch (fdem/time_step.hpp) is sharp, so 0.5 of it resolves a contact
-// in only 10–15 steps: the peak force was 0.4–0.8 % off the converged-step value on three
-// particles of the study at 250 and 1000 triangles, 0.02–0.06 % at 0.1, for a cost that stays
-// a fraction of a second. Rigid-only scenes therefore default to 0.1.
-constexpr double kRigidSafety = 0.1;
-
-// Runaway penetration (an instability criterion beside the energy check). The potential of an
-// element rises from 0 on its faces to 1 at its centroid (contact/munjiza_potential.hpp), and the
-// penalty force on a point grows with it only up to there: past the centroid the point is in
-// another sub-tetrahedron and is pushed on, out through the far side. A contact whose deepest
-// point has gone half-way to the contacting element's centroid (World::penetration ≥ 0.5) is
-// tunnelling the penalty: a healthy contact at α = 10 stays below a few per cent (its
-// penetration is about a tenth of the element's elastic shortening), so 0.5 leaves an order of
-// magnitude of margin while still stopping the run before the node reaches the centroid, at
-// which point the force reverses. Energy is conserved while a body tunnels, so the energy check
-// alone cannot see it.
-constexpr double kRunawayPenetration = 0.5;
-
-// The second half of the criterion: a body passed through another when its centre, on its way
-// through the last step, entered the other's tetrahedra (taken where they are at the end of the
-// step). Checked every step, for bodies whose centre lies in their own material at the start (a
-// hollow or hooked body's centre may legitimately lie in another). It catches a body that sank
-// into a far larger element, where the depth ratio stays small, and one that jumped through a
-// body within a single step, which no contact ever saw.
-struct BodyTets {
-  Eigen::Matrix4Xi tets;  // global node indices
-  int node_begin = 0, node_end = 0;
-  bool centre_inside_itself = false;
-};
-
-// Whether the segment p0 → p1 meets a tetrahedron of b: along it each barycentric coordinate is
-// linear, so the part inside a tetrahedron is the interval where all four are ≥ 0.
-bool path_meets_body(const fdem::World& w, const BodyTets& b, const Vec3& p0, const Vec3& p1) {
-  const Vec3 seg_lo = p0.cwiseMin(p1), seg_hi = p0.cwiseMax(p1);
-  const auto nodes = w.x.middleCols(b.node_begin, b.node_end - b.node_begin);
-  if ((seg_hi.array() < nodes.rowwise().minCoeff().array()).any() ||
-      (seg_lo.array() > nodes.rowwise().maxCoeff().array()).any()) {
-    return false;
-  }
-  for (Eigen::Index k = 0; k < b.tets.cols(); ++k) {
-    contact::TetNodes t;
-    Vec3 lo = w.x.col(b.tets(0, k)), hi = lo;
-    for (int i = 0; i < 4; ++i) {
-      t[i] = w.x.col(b.tets(i, k));
-      lo = lo.cwiseMin(t[i]), hi = hi.cwiseMax(t[i]);
-    }
-    if ((seg_hi.array() < lo.array()).any() || (seg_lo.array() > hi.array()).any()) continue;
-    const Eigen::Vector4d l0 = contact::barycentric(t, p0), l1 = contact::barycentric(t, p1);
-    double s_lo = 0, s_hi = 1;
-    for (int i = 0; i < 4 && s_lo <= s_hi; ++i) {
-      const double d = l1[i] - l0[i];  // L_i(s) = l0 + s d ≥ 0
-      if (d > 0) {
-        s_lo = std::max(s_lo, -l0[i] / d);
-      } else if (d < 0) {
-        s_hi = std::min(s_hi, -l0[i] / d);
-      } else if (l0[i] < 0) {
-        s_hi = -1;
-      }
-    }
-    if (s_lo <= s_hi) return true;
-  }
-  return false;
-}
 
 TetMesh mesh_body(const scene::MeshShape& m, const std::string& key) {
 #if ASPERITY_HAVE_GEOMETRY
@@ -138,6 +59,7 @@ TetMesh centred_at(TetMesh m, const Vec3& position) {
 struct Built {
   fdem::WorldDef def;
   std::vector<int> scene_body;  // world body → scene body
+  int record = -1;              // the recorded body, world index
 };
 
 Built build(const scene::SceneDef& s) {
@@ -171,13 +93,7 @@ Built build(const scene::SceneDef& s) {
         d.velocity = body.velocity;
         d.angular_velocity = body.angular_velocity;
       }
-      if (body.damping_ratio > 0) {
-        // ξ = β ω / 2 for stiffness-proportional damping (fem/tet_elements.hpp), at the body's
-        // highest element frequency.
-        const fem::TetElements e = fem::make_tet_elements(
-            d.mesh.nodes, d.mesh.tets, mat.young, mat.poisson, mat.density, 0, key + "mesh");
-        d.damping = 2 * body.damping_ratio / fem::element_critical_step(e).omega_max;
-      }
+      d.damping_ratio = body.damping_ratio;
     } else if (const auto* box = std::get_if<scene::BoxShape>(&body.shape)) {
       // A fixed block: its box as six tetrahedra with fixed nodes, the same potential target as
       // any element.
@@ -222,11 +138,12 @@ Built build(const scene::SceneDef& s) {
   }
   out.def.gravity = s.gravity;
   out.def.contact.penalty = s.contact.penalty.value_or(0.0);
+  if (s.contact.penalty_alpha) out.def.contact.alpha = *s.contact.penalty_alpha;
   // Coulomb μ: the scene's, else the smallest of the bodies' materials (as pair_friction does
   // for a pair).
   out.def.contact.friction = s.contact.friction.value_or(friction);
   for (std::size_t i = 0; i < out.scene_body.size(); ++i) {
-    if (out.scene_body[i] == s.record.body) out.def.record_body = static_cast<int>(i);
+    if (out.scene_body[i] == s.record.body) out.record = static_cast<int>(i);
   }
   return out;
 }
@@ -243,20 +160,42 @@ const char* kind_name(fdem::BodyKind k) {
   return "?";
 }
 
-}  // namespace
+// The FEM/DEM world as the time loop sees it (run/time_loop.hpp).
+struct FdemModel {
+  fdem::World& w;
+  fdem::RunawayPenetration runaway;
+  int record = -1;
+  int partner = -1;  // world body, -1: the fixed targets
+  long every = 1;
+  double max_penetration = 0;  // largest World::penetration, for the summary
 
-bool is_fdem_scene(const scene::SceneDef& s) {
-  if (s.contact.law == scene::ContactLaw::potential) return true;
-  return std::any_of(s.bodies.begin(), s.bodies.end(), [](const scene::BodyDef& b) {
-    return std::holds_alternative<scene::MeshShape>(b.shape);
-  });
-}
+  // Energy needs the contact energy integrals (extra clipping): computed only when asked.
+  void prepare(bool energy_wanted) { w.want_energy = energy_wanted; }
+  void step(double dt) {
+    fdem::step(w, dt);
+    max_penetration = std::max(max_penetration, w.penetration);
+  }
+  std::string failure() {
+    if (!w.failure.empty()) return w.failure;
+    return runaway.check(w);
+  }
+  const BodyContacts& contacts() const { return w.contacts; }
+  Vec3 relative_velocity() const {
+    const Vec3 v = fdem::body_velocity(w, record);
+    return partner >= 0 ? Vec3(v - fdem::body_velocity(w, partner)) : v;
+  }
+  EnergyBalance energy() const { return fdem::energy(w); }
+  bool finite() const { return w.x.allFinite(); }
+  double time() const { return w.time; }
+  // Checked at most every 20 steps, and at every recorded row.
+  long check_every() const { return std::min(20L, every); }
+};
 
-RunResult run_fdem(const scene::SceneDef& s, const RunOptions& options) {
+// The world, checked: no body may start inside another (the first step would fire it out with
+// a spurious force), and something must move.
+fdem::World checked_world(const scene::SceneDef& s, const Built& built) {
   const std::string where = s.file.string() + ": ";
-  const Built built = build(s);
   fdem::World w = fdem::make_world(built.def);
-  // No body may start inside another: the first step would fire it out with a spurious force.
   if (w.contacts_touching > 0) {
     for (const fdem::TetPair& p : w.pairs) {
       const int a = w.surface_tet_body[p.a], b = w.surface_tet_body[p.b];
@@ -273,201 +212,82 @@ RunResult run_fdem(const scene::SceneDef& s, const RunOptions& options) {
       }
     }
   }
-  const fdem::CriticalStep crit = fdem::critical_step(w);
+  return w;
+}
+
+StepPrediction prediction_of(const scene::SceneDef& s, const fdem::CriticalStep& crit) {
   if (!std::isfinite(crit.critical)) {
-    throw InputError(where + "bodies: nothing moves (every body is fixed)");
+    throw InputError(s.file.string() + ": bodies: nothing moves (every body is fixed)");
   }
+  // The potential contact's shortest duration has no closed form: only the duration bounds it.
+  return {.critical = crit.critical,
+          .limited_by = crit.limited_by,
+          .shortest_contact = std::numeric_limits<double>::infinity()};
+}
 
-  bool deformable_moves = false;
-  for (const fdem::Body& b : w.bodies) deformable_moves |= b.kind == fdem::BodyKind::deformable;
-  const double safety = s.dt_safety.value_or(deformable_moves ? kFdemSafety : kRigidSafety);
-  double dt = 0;
-  bool auto_dt = false;
-  if (options.dt_factor) {
-    dt = *options.dt_factor * crit.critical;
-  } else if (const std::optional<double> given = options.dt ? options.dt : s.dt) {
-    dt = *given;
-    if (dt > crit.critical && !(options.allow_unsafe_dt || s.allow_unsafe_dt)) {
-      throw InputError(where + "dt: " + fmt(dt) + " s exceeds the predicted critical step " +
-                       fmt(crit.critical) + " s (limited by " + crit.limited_by +
-                       "); use \"auto\", a smaller dt, or allow_unsafe_dt: true");
-    }
-  } else {
-    dt = safety * crit.critical;
-    auto_dt = true;
+StepRegime regime_of(const fdem::World& w) {
+  for (const fdem::Body& b : w.bodies) {
+    if (b.kind == fdem::BodyKind::deformable) return StepRegime::fdem_deformable;
   }
-  const double n_steps_real = std::ceil(s.duration / dt - 1e-9);
-  if (n_steps_real > 2e9) {
-    throw InputError(where + "duration: " + fmt(s.duration) + " s needs " + fmt(n_steps_real) +
-                     " steps of " + fmt(dt) + " s (over 2e9)");
-  }
-  const long n_steps = static_cast<long>(n_steps_real);
+  return StepRegime::fdem_rigid;
+}
 
-  // The partner whose velocity the restitution is measured against: the other free body when
-  // there are exactly two, else the fixed targets (velocity zero).
-  int partner = -1;
-  {
-    std::vector<int> free;
-    for (std::size_t b = 0; b < w.bodies.size(); ++b) {
-      if (w.bodies[b].kind != fdem::BodyKind::fixed) free.push_back(static_cast<int>(b));
-    }
-    if (free.size() == 2) partner = free[0] == w.record_body ? free[1] : free[0];
-  }
-  auto relative_velocity = [&] {
-    const Vec3 v = fdem::body_velocity(w, w.record_body);
-    return partner >= 0 ? Vec3(v - fdem::body_velocity(w, partner)) : v;
-  };
+}  // namespace
 
-  std::vector<BodyTets> body_tets(w.bodies.size());
-  for (std::size_t b = 0; b < w.bodies.size(); ++b) {
-    body_tets[b].tets = built.def.bodies[b].mesh.tets.array() + w.bodies[b].node_begin;
-    body_tets[b].node_begin = w.bodies[b].node_begin;
-    body_tets[b].node_end = w.bodies[b].node_end;
-    body_tets[b].centre_inside_itself =
-        w.bodies[b].kind != fdem::BodyKind::fixed &&
-        path_meets_body(w, body_tets[b], fdem::body_centre(w, static_cast<int>(b)),
-                        fdem::body_centre(w, static_cast<int>(b)));
-  }
-  std::vector<Vec3> centre_before(w.bodies.size());
-  for (std::size_t b = 0; b < w.bodies.size(); ++b) {
-    centre_before[b] = fdem::body_centre(w, static_cast<int>(b));
-  }
-  auto body_name = [&](int b) { return "\"" + w.bodies[b].name + "\""; };
-  auto check_penetration = [&](RunMonitor& monitor) {
-    if (w.penetration >= kRunawayPenetration) {
-      monitor.flag("runaway penetration: bodies " + body_name(w.penetration_body_a) + " and " +
-                   body_name(w.penetration_body_b) + " overlap " + fmt(w.penetration) +
-                   " of the way to an element's centre (limit " + fmt(kRunawayPenetration) +
-                   ") at t = " + fmt(w.time) + " s");
-      return;
-    }
-    for (std::size_t a = 0; a < w.bodies.size(); ++a) {
-      if (!body_tets[a].centre_inside_itself) continue;
-      const Vec3 c = fdem::body_centre(w, static_cast<int>(a));
-      for (std::size_t b = 0; b < w.bodies.size(); ++b) {
-        if (b != a && path_meets_body(w, body_tets[b], centre_before[a], c)) {
-          monitor.flag("runaway penetration: body " + body_name(static_cast<int>(a)) +
-                       " passed through " + body_name(static_cast<int>(b)) +
-                       " (its centre entered it) at t = " + fmt(w.time) + " s");
-          return;
-        }
-      }
-      centre_before[a] = c;
-    }
-  };
+bool is_fdem_scene(const scene::SceneDef& s) {
+  if (s.contact.law == scene::ContactLaw::potential) return true;
+  return std::any_of(s.bodies.begin(), s.bodies.end(), [](const scene::BodyDef& b) {
+    return std::holds_alternative<scene::MeshShape>(b.shape);
+  });
+}
+
+StepChoice fdem_step(const scene::SceneDef& s, const RunOptions& options) {
+  const Built built = build(s);
+  const fdem::World w = checked_world(s, built);
+  return choose_step(s, options, prediction_of(s, fdem::critical_step(w)), regime_of(w));
+}
+
+RunResult run_fdem(const scene::SceneDef& s, const RunOptions& options) {
+  const Built built = build(s);
+  fdem::World w = checked_world(s, built);
+  const fdem::CriticalStep crit = fdem::critical_step(w);
+  const StepPrediction prediction = prediction_of(s, crit);
+  const StepChoice step = choose_step(s, options, prediction, regime_of(w));
+  const RunIdentity id{.scene = s.name,
+                       .model = "fdem",
+                       .contact_law = scene::contact_law_name(s.contact.law),
+                       .recorded_body = s.bodies[s.record.body].name};
+  if (!step.unresolved.empty()) return unresolved_run(id, step, prediction);
+
+  std::vector<bool> free;
+  for (const fdem::Body& b : w.bodies) free.push_back(b.kind != fdem::BodyKind::fixed);
+  FdemModel m{.w = w,
+              .runaway = fdem::RunawayPenetration(w, built.def),
+              .record = built.record,
+              .partner = restitution_partner(built.record, free),
+              .every = std::max(1, s.record.every)};
 
   RunResult result;
-  const auto wall0 = std::chrono::steady_clock::now();
-  const double cpu0 = cpu_seconds();
-  ImpactMeasures im;
-  im.start(0, w.record_force, w.record_depth);
-  const fdem::EnergyTerms e0 = fdem::energy(w);
-  auto balance = [](const fdem::EnergyTerms& e) {
-    return EnergyBalance{.kinetic = e.kinetic,
-                         .elastic = e.elastic,
-                         .contact = e.contact,
-                         .gravity = e.gravity,
-                         .dissipated = e.dissipated};
-  };
-  RunMonitor monitor(s.name, balance(e0), s.unstable_energy_growth, n_steps, options.progress);
-  auto push_rows = [&](const fdem::EnergyTerms& e) {
-    if (!options.keep_rows) return;
-    const Vec3& f = w.record_force;
-    result.force.push_back({w.time, f.x(), f.y(), f.z(), f.norm()});
-    result.energy.push_back(
-        {w.time, e.kinetic, e.elastic, e.contact, e.gravity, e.dissipated, e.total()});
-  };
-  push_rows(e0);
-  // Energy needs the contact energy integrals (extra clipping), so it is checked at most every
-  // 20 steps, and at every recorded row.
-  const long check_every = std::min(20, std::max(1, s.record.every));
-  Vec3 impulse = Vec3::Zero(), v_approach = Vec3::Zero(), v_separation = Vec3::Zero();
-  bool was_touching = im.touching, ended = false, ended_by_separation = false;
-  double max_penetration = 0;  // largest World::penetration, for the summary
-  for (long k = 1; k <= n_steps && !monitor.unstable(); ++k) {
-    const bool row = k % s.record.every == 0 || k == n_steps;
-    w.want_energy = row || k % check_every == 0;
-    const Vec3 v_before = relative_velocity();
-    fdem::step(w, dt);
-    if (!w.failure.empty()) {
-      monitor.flag(w.failure);
-      break;
-    }
-    max_penetration = std::max(max_penetration, w.penetration);
-    check_penetration(monitor);
-    if (monitor.unstable()) break;
-    im.add(w.time, w.record_force, w.record_depth);
-    impulse += w.record_force * dt;
-    if (!was_touching && im.touching && im.first_contact_time >= 0 && v_approach.isZero()) {
-      v_approach = v_before;
-    }
-    if (was_touching && !im.touching && !ended) {
-      v_separation = relative_velocity();
-      ended = true;
-    }
-    was_touching = im.touching;
-    ended_by_separation =
-        s.record.end_after_separation && im.separated_for(w.time, *s.record.end_after_separation);
-    if (w.want_energy) {
-      const fdem::EnergyTerms e = fdem::energy(w);
-      monitor.check_energy(w.time, balance(e), w.x.allFinite());
-      if (row) push_rows(e);
-    }
-    monitor.progress(k);
-    if (ended_by_separation) {
-      if (!row) push_rows(fdem::energy(w));  // the last state, where the run stopped
-      break;
-    }
-  }
-  monitor.finish();
-  const double cpu = cpu_seconds() - cpu0;
-  const double wall =
-      std::chrono::duration<double>(std::chrono::steady_clock::now() - wall0).count();
+  const std::uint64_t ticks0 = ticks();
+  const LoopOutcome loop = time_loop(m, s, options, step, result);
+  const double per_tick = seconds_per_tick(loop.wall_seconds, ticks() - ticks0);
+  result.status = loop.status;
+  result.message = loop.message;
 
-  result.status = monitor.status(im.first_contact_time >= 0);
-  result.message = monitor.message();
-  const double drift = monitor.drift();
-  const std::string& unstable = monitor.message();
-  using J = nlohmann::ordered_json;
+  using J = SummaryJson;
   auto& j = result.summary;
-  j["status"] = result.status;
-  if (!unstable.empty()) j["message"] = unstable;
-  j["scene"] = s.name;
-  j["model"] = "fdem";
-  j["contact_law"] = "potential";
-  j["recorded_body"] = s.bodies[s.record.body].name;
-  j["peak_force"] = im.peak_force;
-  j["impulse"] = im.impulse;
-  j["contact_duration"] = im.duration_until(w.time);
-  j["first_contact_time"] = im.first_contact_time < 0 ? J() : J(im.first_contact_time);
-  j["max_overlap"] = im.max_overlap;
+  write_measures(j, id, loop.status, loop.message, loop.impact, w.time, loop.restitution.value(),
+                 loop.energy_drift);
   // Largest overlap depth / contacting element's centroid height (runaway penetration at 0.5).
-  j["max_penetration_ratio"] = max_penetration;
-  // e = −(v_sep · n) / (v_app · n), n the direction of the recorded body's contact impulse,
-  // velocities of its centre of mass relative to the partner's, at the first contact's start and
-  // end.
-  const double in_speed = impulse.norm() > 0 ? -v_approach.dot(impulse.normalized()) : 0;
-  j["restitution"] =
-      (ended && in_speed > 0) ? J(v_separation.dot(impulse.normalized()) / in_speed) : J();
-  j["energy_drift"] = drift;
-  j["dt"] = dt;
-  j["dt_critical_predicted"] = crit.critical;
+  j["max_penetration_ratio"] = m.max_penetration;
+  write_step(j, step, prediction);
   j["dt_element"] = std::isfinite(crit.element) ? J(crit.element) : J();
   j["dt_contact"] = std::isfinite(crit.contact) ? J(crit.contact) : J();
-  j["dt_limited_by"] = crit.limited_by;
-  j["dt_safety"] = auto_dt ? J(safety) : J();
   j["penalty"] = w.penalty;
   j["penalty_alpha"] = s.contact.penalty ? J() : J(built.def.contact.alpha);
   j["friction"] = w.friction;
-  j["steps"] = w.steps;
-  j["simulated_time"] = w.time;
-  j["ended_by"] = ended_by_separation ? "separation" : "duration";
-  j["cpu_seconds"] = cpu;
-  j["wall_seconds"] = wall;
-  j["profile"] = {{"broad_phase", w.profile.broad_phase},
-                  {"contact", w.profile.contact},
-                  {"internal_forces", w.profile.internal},
-                  {"integrate", w.profile.integrate}};
+  write_run(j, w.steps, w.time, loop.ended_by_separation, loop.cpu_seconds, loop.wall_seconds);
+  j["profile"] = profile_json(w.profile, per_tick, true);
   j["neighbour_rebuilds"] = w.rebuilds;
   j["contact_evaluations"] = w.contact_evaluations;
   j["contacts_touching"] = w.contacts_touching;

@@ -2,7 +2,8 @@
 // each other and against fixed boxes and planes, in Munjiza's potential contact.
 #pragma once
 
-#include "run/run_scene.hpp"
+#include "run/run_result.hpp"
+#include "run/step_policy.hpp"
 #include "scene/scene.hpp"
 
 namespace asperity::run {
@@ -12,5 +13,8 @@ bool is_fdem_scene(const scene::SceneDef& scene);
 
 // Same contract as run_scene (summary keys, rows, InputError for a scene it cannot run).
 RunResult run_fdem(const scene::SceneDef& scene, const RunOptions& options);
+
+// The step run_fdem would take (world built, not stepped).
+StepChoice fdem_step(const scene::SceneDef& scene, const RunOptions& options);
 
 }  // namespace asperity::run

@@ -6,17 +6,12 @@
 #include <chrono>
 #include <cmath>
 #include <cstdio>
-#include <sstream>
 #include <string>
 
-namespace asperity::run {
+#include "core/energy.hpp"
+#include "core/format.hpp"
 
-// An energy evaluation, J. gravity is the potential measured from the initial positions
-// (−Σ m g·(x − x₀)); dissipated is accumulated.
-struct EnergyBalance {
-  double kinetic = 0, elastic = 0, contact = 0, gravity = 0, dissipated = 0;
-  double total() const { return kinetic + elastic + contact + gravity + dissipated; }
-};
+namespace asperity::run {
 
 class RunMonitor {
  public:
@@ -77,13 +72,6 @@ class RunMonitor {
   }
   double elapsed() const {
     return std::chrono::duration<double>(std::chrono::steady_clock::now() - wall0_).count();
-  }
-
-  static std::string fmt(double x) {
-    std::ostringstream s;
-    s.precision(6);
-    s << x;
-    return s.str();
   }
 
  private:

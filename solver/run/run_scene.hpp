@@ -1,43 +1,22 @@
-// Runs one scene to its end and measures what the contract's summary.json reports.
+// `asperity run`: a scene dispatched to its model's runner (run_spheres, run_fdem), each through
+// the one step policy (run/step_policy.hpp), time loop (run/time_loop.hpp) and summary core
+// (run/summary.hpp); and the contract's output files.
 #pragma once
 
 #include <filesystem>
-#include <optional>
-#include <string>
-#include <vector>
 
-#include <nlohmann/json.hpp>
-
+#include "run/run_result.hpp"
+#include "run/step_policy.hpp"
 #include "scene/scene.hpp"
 
 namespace asperity::run {
 
-struct ForceRow {
-  double t, fx, fy, fz, f;
-};
-struct EnergyRow {
-  double t, kinetic, elastic, contact, gravity, dissipated, total;
-};
-
-struct RunOptions {
-  std::optional<double> dt;         // overrides the scene's dt
-  std::optional<double> dt_factor;  // dt = factor × the predicted critical step (stability
-                                    // sweeps; implies allow_unsafe_dt); wins over `dt`
-  bool allow_unsafe_dt = false;
-  bool keep_rows = true;  // fill force and energy rows (off for sweeps)
-  bool progress = false;  // progress line on stderr for long runs
-};
-
-struct RunResult {
-  std::string status;   // "ok", "unstable" or "no_contact"
-  std::string message;  // why, when unstable
-  nlohmann::ordered_json summary;
-  std::vector<ForceRow> force;
-  std::vector<EnergyRow> energy;
-};
-
 // Throws InputError for a scene the solver cannot run (bad geometry, unsafe dt, ...).
 RunResult run_scene(const scene::SceneDef& scene, const RunOptions& options = {});
+
+// The step `asperity run` would take for this scene ("auto" resolved), without running it. Builds
+// the world once (mesh bodies are read and meshed).
+StepChoice predicted_step(const scene::SceneDef& scene, const RunOptions& options = {});
 
 // Writes summary.json, force.csv and energy.csv into `out` (each via a temporary file and a
 // rename, summary.json last); an unstable run writes summary.json only.

@@ -8,6 +8,7 @@
 
 #include "core/error.hpp"
 #include "io/atomic_file.hpp"
+#include "io/csv.hpp"
 #include "run/run_scene.hpp"
 
 namespace asperity::run {
@@ -135,14 +136,12 @@ StabilityResult stability_sweep(
 
 void write_stability(const StabilityResult& result, const std::filesystem::path& out) {
   std::filesystem::create_directories(out);
-  std::ostringstream csv;
-  csv.precision(10);
-  csv << "factor,dt,status,energy_drift,peak_force,cpu_seconds,impulse,peak_force_error,impulse_"
-         "error\n";
+  io::CsvWriter csv({"factor", "dt", "status", "energy_drift", "peak_force", "cpu_seconds",
+                     "impulse", "peak_force_error", "impulse_error"});
   for (const StabilityRow& r : result.rows) {
-    csv << r.factor << ',' << r.dt << ',' << r.status << ',' << r.energy_drift << ','
-        << r.peak_force << ',' << r.cpu_seconds << ',' << r.impulse << ',' << r.peak_force_error
-        << ',' << r.impulse_error << '\n';
+    csv.number(r.factor).number(r.dt).field(r.status).number(r.energy_drift);
+    csv.number(r.peak_force).number(r.cpu_seconds).number(r.impulse);
+    csv.number(r.peak_force_error).number(r.impulse_error).end_row();
   }
   io::write_atomically(out / "stability.csv", csv.str());
   io::write_atomically(out / "summary.json", result.summary.dump(2) + "\n");

@@ -62,24 +62,23 @@ Shape parse_shape(const JsonReader& s) {
 }
 
 ContactDef parse_contact(const JsonReader& c) {
-  c.only_keys({"law", "kn", "kt", "penalty", "friction", "restitution"});
+  c.only_keys({"law", "kn", "kt", "penalty", "penalty_alpha", "friction", "restitution"});
   ContactDef out;
   const std::string law = c.string("law");
-  if (law == "hertz") {
-    out.law = ContactLaw::hertz;
-  } else if (law == "hertz-mindlin") {
-    out.law = ContactLaw::hertz_mindlin;
-  } else if (law == "linear") {
-    out.law = ContactLaw::linear;
-    out.kn = c.positive("kn");
-  } else if (law == "potential") {
-    out.law = ContactLaw::potential;
+  std::vector<std::string_view> names;
+  for (const auto& [l, name] : kContactLawNames) names.push_back(name);
+  if (const std::optional<ContactLaw> known = contact_law_from_name(law)) {
+    out.law = *known;
+    if (out.law == ContactLaw::linear) out.kn = c.positive("kn");
   } else {
-    const std::string near =
-        io::closest_key(law, {"hertz", "hertz-mindlin", "linear", "potential"});
+    const std::string near = io::closest_key(law, names);
+    std::string expected;
+    for (std::size_t i = 0; i < names.size(); ++i) {
+      expected += (i == 0 ? "" : (i + 1 == names.size() ? " or " : ", ")) + std::string(names[i]);
+    }
     c.fail("law", "unknown contact law \"" + law + "\"" +
-                      (near.empty() ? "" : " (did you mean \"" + near + "\"?)") +
-                      "; expected hertz, hertz-mindlin, linear or potential");
+                      (near.empty() ? "" : " (did you mean \"" + near + "\"?)") + "; expected " +
+                      expected);
   }
   if (c.has("kn") && !out.kn) c.fail("kn", "only the linear law takes kn");
   if (c.has("kt")) {
@@ -89,6 +88,14 @@ ContactDef parse_contact(const JsonReader& c) {
   if (c.has("penalty")) {
     if (out.law != ContactLaw::potential) c.fail("penalty", "only the potential law takes penalty");
     out.penalty = c.positive("penalty");
+  }
+  if (c.has("penalty_alpha")) {
+    if (out.law != ContactLaw::potential) {
+      c.fail("penalty_alpha", "only the potential law takes penalty_alpha");
+    }
+    if (out.penalty) c.fail("penalty_alpha", "give penalty (Pa) or penalty_alpha, not both");
+    // α = p/E (docs/physics.md, "Penalty"); the study definition's range.
+    out.penalty_alpha = c.in_range("penalty_alpha", 0, 1e6, true, false);
   }
   if (c.has("friction")) out.friction = c.in_range("friction", 0.0, 1e3, false, false);
   if (c.has("restitution")) out.restitution = c.in_range("restitution", 0.0, 1.0, true, false);

@@ -1,9 +1,12 @@
 // A scene as the contract defines it (docs/contract.md): plain definition structs, SI units.
 #pragma once
 
+#include <array>
 #include <filesystem>
 #include <optional>
 #include <string>
+#include <string_view>
+#include <utility>
 #include <variant>
 #include <vector>
 
@@ -42,19 +45,41 @@ struct BodyDef {
   Vec3 angular_velocity = Vec3::Zero();
   bool fixed = false;
   // Model "fem" only: damping ratio ξ of the body's highest element mode, from stiffness-
-  // proportional Kelvin–Voigt damping (lower modes get ξ ω/ω_max; run/run_fdem.cpp).
+  // proportional Kelvin–Voigt damping (lower modes get ξ ω/ω_max; fdem::BodyDef::damping_ratio).
   double damping_ratio = 0;
 };
 
 enum class ContactLaw { hertz, hertz_mindlin, linear, potential };
 
+// The scene's name of each law: the one table the loader parses with and summaries write.
+inline constexpr std::array<std::pair<ContactLaw, std::string_view>, 4> kContactLawNames{{
+    {ContactLaw::hertz, "hertz"},
+    {ContactLaw::hertz_mindlin, "hertz-mindlin"},
+    {ContactLaw::linear, "linear"},
+    {ContactLaw::potential, "potential"},
+}};
+inline std::string contact_law_name(ContactLaw law) {
+  for (const auto& [l, name] : kContactLawNames) {
+    if (l == law) return std::string(name);
+  }
+  return "?";
+}
+inline std::optional<ContactLaw> contact_law_from_name(std::string_view name) {
+  for (const auto& [l, n] : kContactLawNames) {
+    if (n == name) return l;
+  }
+  return std::nullopt;
+}
+
 struct ContactDef {
   ContactLaw law = ContactLaw::hertz_mindlin;
-  std::optional<double> kn;           // linear: normal stiffness, N/m
-  std::optional<double> kt;           // linear: tangential stiffness, N/m (default 2/7 kn)
-  std::optional<double> penalty;      // potential: penalty, Pa (default α·E)
-  std::optional<double> friction;     // overrides the materials' pair friction
-  std::optional<double> restitution;  // overrides the materials' pair restitution
+  std::optional<double> kn;             // linear: normal stiffness, N/m
+  std::optional<double> kt;             // linear: tangential stiffness, N/m (default 2/7 kn)
+  std::optional<double> penalty;        // potential: penalty p, Pa (default α·E)
+  std::optional<double> penalty_alpha;  // potential: α in p = α·E (E the largest moving body's
+                                        // Young's modulus; default 10); exclusive with penalty
+  std::optional<double> friction;       // overrides the materials' pair friction
+  std::optional<double> restitution;    // overrides the materials' pair restitution
 };
 
 struct RecordDef {
@@ -72,7 +97,7 @@ struct SceneDef {
   double duration = 0;
   std::optional<double> dt;  // empty: "auto"
   // Factor on the predicted critical step for "auto"; empty: the model's own default (spheres
-  // 0.01, run/run_scene.cpp; FEM/DEM 0.5, run/run_fdem.cpp). Runs report the one used as
+  // 0.01; FEM/DEM 0.5, rigid-only 0.1: run/step_policy.hpp). Runs report the one used as
   // summary "dt_safety".
   std::optional<double> dt_safety;
   bool allow_unsafe_dt = false;  // run a given dt above the predicted critical step

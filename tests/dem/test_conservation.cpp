@@ -35,7 +35,6 @@ dem::SphereWorld oblique_pair() {
   w.v.col(1) = Vec3(-0.1, 0, 0.5);
   w.w.col(0) = Vec3(10, -20, 5);
   w.w.col(1) = Vec3(0, 3, 0);
-  w.record_body = 0;
   dem::initialise(w);
   return w;
 }
@@ -88,7 +87,6 @@ TEST(Conservation, HeadOnImpactOfEqualSpheresIsMirrorSymmetric) {
   w.x.col(1) = Vec3(0.01001, 0, 0);
   w.v.col(0) = Vec3(1, 0, 0);
   w.v.col(1) = Vec3(-1, 0, 0);
-  w.record_body = 0;
   dem::initialise(w);
   for (int k = 0; k < 20000; ++k) dem::step(w, 1e-8);
   // Mirror symmetry about x = 0 holds exactly in exact arithmetic; the two columns see the same

@@ -48,7 +48,6 @@ inline WorldDef ball_on_block(double r, int n, double v, BodyKind kind, const Ma
                         .kind = BodyKind::fixed,
                         .mesh = box_mesh(Vec3(-2 * r, -2 * r, -r), Vec3(2 * r, 2 * r, 0), 1, 1, 1),
                         .material = mat});
-  def.record_body = 0;
   return def;
 }
 
@@ -82,11 +81,11 @@ inline Impact run_impact(World& w, double t_max, double safety = 0.5) {
   out.dt = safety * critical_step(w).critical;
   w.want_energy = true;
   const double e0 = energy(w).total();
-  out.v_before = body_velocity(w, w.record_body);
+  out.v_before = body_velocity(w, 0);
   bool touched = false;
   while (w.time < t_max && w.failure.empty()) {
     step(w, out.dt);
-    const double f = w.record_force.norm();
+    const double f = w.contacts.force.col(0).norm();
     out.peak_force = std::max(out.peak_force, f);
     out.drift = std::max(out.drift, std::abs(energy(w).total() - e0) / e0);
     if (f > 0) {
@@ -96,7 +95,7 @@ inline Impact run_impact(World& w, double t_max, double safety = 0.5) {
       break;
     }
   }
-  out.v_after = body_velocity(w, w.record_body);
+  out.v_after = body_velocity(w, 0);
   out.steps = w.steps;
   return out;
 }

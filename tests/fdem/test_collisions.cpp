@@ -29,7 +29,6 @@ TEST(Collisions, HeadOnIdenticalBallsConserveMomentumAndMirror) {
                         .mesh = scenes::mirrored_x(left),
                         .material = m,
                         .velocity = Vec3(-v, 0, 0)});
-  def.record_body = 0;
   World w = make_world(def);
   const double p_ball = w.bodies[0].mass * v;
   const scenes::Impact im = run_impact(w, 0.1);

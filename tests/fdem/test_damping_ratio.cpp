@@ -1,5 +1,5 @@
 // The scene key damping_ratio of a deformable body: ξ of its highest element mode, turned into
-// the Kelvin–Voigt β = 2ξ/ω_max (run/run_fdem.cpp).
+// the Kelvin–Voigt β = 2ξ/ω_max (fdem::make_world).
 #include <cmath>
 #include <filesystem>
 #include <fstream>

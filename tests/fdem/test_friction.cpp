@@ -49,7 +49,6 @@ Slide box_on_block(BodyKind kind, int nx, double mu, double v0, double theta) {
                           .kind = BodyKind::fixed,
                           .mesh = box_mesh(Vec3(-0.2, -0.2, -kBlockH), Vec3(0.6, 0.2, 0), 1, 1, 1),
                           .material = m});
-  s.def.record_body = 0;
   return s;
 }
 
@@ -86,7 +85,7 @@ Track run(World& w, double t_end, bool stop_at_rest) {
     step(w, dt);
     const double dx = body_centre(w, 0).x() - x0;
     t.max_slip = std::max(t.max_slip, std::abs(base_x(w) - b0));
-    t.max_depth = std::max(t.max_depth, w.record_depth);
+    t.max_depth = std::max(t.max_depth, w.contacts.overlap[0]);
     if (t.half_time < 0 && body_velocity(w, 0).x() <= 0.5 * v0) t.half_time = w.time;
     if (t.stop_time < 0 && body_velocity(w, 0).x() <= 0) {
       t.stop_time = w.time;

@@ -1,6 +1,6 @@
-// Runaway penetration as an instability criterion of FEM/DEM runs (run/run_fdem.cpp): a penalty
-// too soft for the impact is tunnelled while the energy stays conserved, so only this criterion
-// can stop the run; healthy collisions stay far below its threshold.
+// Runaway penetration as an instability criterion of FEM/DEM runs (fdem/runaway_penetration.hpp): a
+// penalty too soft for the impact is tunnelled while the energy stays conserved, so only this
+// criterion can stop the run; healthy collisions stay far below its threshold.
 #include <filesystem>
 #include <fstream>
 #include <string>

@@ -94,8 +94,8 @@ TEST(CriticalStep, RigidPenetrationBoundHoldsInAnImpact) {
       lowest = std::min(lowest, w.x(2, i));
     }
     deepest = std::max(deepest, -lowest);
-    if (w.record_force.norm() > 0) touched = true;
-    if (touched && w.record_force.norm() == 0) break;
+    if (w.contacts.force.col(0).norm() > 0) touched = true;
+    if (touched && w.contacts.force.col(0).norm() == 0) break;
   }
   ASSERT_TRUE(touched);
   std::printf("rigid ball: delta_max %.4g m, simulated %.4g m, %zu of %d faces\n", faces.depth,

@@ -124,9 +124,23 @@ TEST(LoadScene, UnsafeDtIsRefusedUnlessAllowed) {
   const std::string text = edit("\"dt\": \"auto\"", "\"dt\": 1e-3");
   const std::string msg = error_of("dt", text);
   EXPECT_NE(msg.find("dt: 0.001 s exceeds the predicted critical step"), std::string::npos) << msg;
+  // Above the critical step (2.2e-5 s here) but inside the Hertz contact (4.5e-5 s): allowed.
   EXPECT_EQ(
-      error_of("dt-allowed", edit("\"dt\": \"auto\"", "\"dt\": 1e-3, \"allow_unsafe_dt\": true")),
+      error_of("dt-allowed", edit("\"dt\": \"auto\"", "\"dt\": 3e-5, \"allow_unsafe_dt\": true")),
       "");
+}
+
+// A step with no step inside the shortest contact, or none inside the duration, measures nothing:
+// refused even with allow_unsafe_dt (run/step_policy.hpp), instead of a "no_contact" result.
+TEST(LoadScene, StepLongerThanContactOrDurationIsRefused) {
+  const std::string contact =
+      error_of("dt-contact", edit("\"dt\": \"auto\"", "\"dt\": 1e-3, \"allow_unsafe_dt\": true"));
+  EXPECT_NE(contact.find("dt: 0.001 s is longer than the shortest predicted contact"),
+            std::string::npos)
+      << contact;
+  const std::string duration =
+      error_of("dt-duration", edit("\"dt\": \"auto\"", "\"dt\": 1e10, \"allow_unsafe_dt\": true"));
+  EXPECT_NE(duration.find("is longer than the duration"), std::string::npos) << duration;
 }
 
 TEST(LoadScene, UnknownLawAndShapeGetSuggestions) {

@@ -52,9 +52,9 @@ void check(const scene::SceneDef& s) {
       const double z = lammps_family::pair_zeta(s, static_cast<int>(a), static_cast<int>(b));
       if (z > kAlphaMax || (z > 0 && z < kAlphaMin)) {
         throw InputError(s.file.string() + ": restitution: lammps: bodies \"" + s.bodies[a].name +
-                         "\" and \"" + s.bodies[b].name + "\" need the Hertz damping ζ = " +
-                         num(z) + ", outside what LAMMPS's Tsuji map α(e) reaches (" +
-                         num(kAlphaMin) + " to " + num(kAlphaMax) + ")");
+                         "\" and \"" + s.bodies[b].name +
+                         "\" need the Hertz damping ζ = " + num(z) +
+                         ", outside what LAMMPS's Tsuji map α(e) reaches (0.0003 to " + "1.2728)");
       }
     }
   }

@@ -25,7 +25,10 @@ namespace {
 namespace fs = std::filesystem;
 using lammps_family::num;
 
-const double kZetaMax = std::sqrt(5.0);  // ζ = √5 |β| and |β| < 1
+// ζ = √5 |β|, and LIGGGHTS requires e > 0.05 (global_properties.cpp): |β(0.05)| = 0.690.
+const double kZetaMax =
+    std::sqrt(5.0) * -std::log(0.05) /
+    std::sqrt(std::log(0.05) * std::log(0.05) + std::numbers::pi * std::numbers::pi);
 
 void check(const scene::SceneDef& s) {
   lammps_family::check_common(s, "liggghts");
@@ -37,8 +40,8 @@ void check(const scene::SceneDef& s) {
         throw InputError(s.file.string() + ": restitution: liggghts: bodies \"" + s.bodies[a].name +
                          "\" and \"" + s.bodies[b].name +
                          "\" need the Hertz damping ζ = " + num(z) +
-                         ", beyond what LIGGGHTS's β = ln e/√(ln²e + π²) reaches (ζ = √5|β| < " +
-                         num(kZetaMax) + ")");
+                         ", beyond what LIGGGHTS's β = ln e/√(ln²e + π²) reaches with its e > 0.05 "
+                         "(ζ = √5|β| < 1.543)");
       }
     }
   }
@@ -46,7 +49,7 @@ void check(const scene::SceneDef& s) {
 
 // The restitution whose LIGGGHTS β gives ζ = √5 |β|.
 double liggghts_e_for(double zeta) {
-  const double beta = zeta / kZetaMax;
+  const double beta = zeta / std::sqrt(5.0);
   return std::exp(-std::numbers::pi * beta / std::sqrt(1 - beta * beta));
 }
 
@@ -72,37 +75,44 @@ std::string input(const scene::SceneDef& s, const Resolved& r, bool trace) {
     for (int b : body_of_type) o << ' ' << num(value(s.materials[s.bodies[b].material]));
     o << "\n";
   };
-  auto per_pair = [&](const char* name, auto value) {
+  // A per-pair property: value(sphere, other) for every pair of types with a sphere; two planes
+  // never meet, so theirs is `none`.
+  auto per_pair = [&](const char* name, auto value, double none) {
     o << "fix m_" << name << " all property/global " << name << " peratomtypepair " << nt;
     for (int i = 0; i < nt; ++i) {
       for (int j = 0; j < nt; ++j) {
-        // Pairs that never meet (two planes) still need a value: the first body's own.
-        const int a = body_of_type[i], b = body_of_type[j];
-        const bool sphere_a = std::holds_alternative<scene::SphereShape>(s.bodies[a].shape);
-        o << ' ' << num(sphere_a ? value(a, b) : value(b, b));
+        const int a = body_of_type[static_cast<std::size_t>(i)];
+        const int b = body_of_type[static_cast<std::size_t>(j)];
+        auto sphere = [&](int k) {
+          return std::holds_alternative<scene::SphereShape>(
+              s.bodies[static_cast<std::size_t>(k)].shape);
+        };
+        o << ' ' << num(sphere(a) ? value(a, b) : sphere(b) ? value(b, a) : none);
       }
     }
     o << "\n";
   };
   per_type("youngsModulus", [](const Material& m) { return m.young; });
   per_type("poissonsRatio", [](const Material& m) { return m.poisson; });
-  per_pair("coefficientFriction", [&](int a, int b) { return pair_friction(s, a, b); });
+  per_pair(
+      "coefficientFriction", [&](int a, int b) { return pair_friction(s, a, b); }, 0.0);
   if (linear) {
     const double kn = *s.contact.kn, kt = s.contact.kt.value_or(2.0 / 7.0 * kn);
-    auto m_eff = [&](int a, int b) {
-      return std::holds_alternative<scene::SphereShape>(s.bodies[a].shape) ? mass_eff(s, a, b)
-                                                                           : mass_eff(s, b, a);
-    };
-    per_pair("kn", [&](int, int) { return kn; });
-    per_pair("kt", [&](int, int) { return kt; });
-    per_pair("gamman",
-             [&](int a, int b) { return pair_zeta(s, a, b) * std::sqrt(kn / m_eff(a, b)); });
-    per_pair("gammat",
-             [&](int a, int b) { return pair_zeta(s, a, b) * std::sqrt(kt / m_eff(a, b)); });
+    per_pair(
+        "kn", [&](int, int) { return kn; }, kn);
+    per_pair(
+        "kt", [&](int, int) { return kt; }, kt);
+    per_pair(
+        "gamman",
+        [&](int a, int b) { return pair_zeta(s, a, b) * std::sqrt(kn / mass_eff(s, a, b)); }, 0.0);
+    per_pair(
+        "gammat",
+        [&](int a, int b) { return pair_zeta(s, a, b) * std::sqrt(kt / mass_eff(s, a, b)); }, 0.0);
     o << "pair_style gran model hooke/stiffness tangential history limitForce on\n";
   } else {
-    per_pair("coefficientRestitution",
-             [&](int a, int b) { return liggghts_e_for(pair_zeta(s, a, b)); });
+    per_pair(
+        "coefficientRestitution", [&](int a, int b) { return liggghts_e_for(pair_zeta(s, a, b)); },
+        1.0);
     o << "pair_style gran model hertz tangential history limitForce on\n";
   }
   o << "pair_coeff * *\n";

@@ -14,6 +14,7 @@
 #include "peer_adapters.hpp"
 #include "run/impact_measures.hpp"
 #include "run/rebound.hpp"
+#include "run/summary.hpp"
 
 namespace asperity::peers {
 namespace fs = std::filesystem;
@@ -134,20 +135,6 @@ PeerTrace read_trace_csv(const fs::path& file, int free_spheres, const std::stri
 
 namespace {
 
-const char* law_key(scene::ContactLaw law) {
-  switch (law) {
-    case scene::ContactLaw::hertz:
-      return "hertz";
-    case scene::ContactLaw::hertz_mindlin:
-      return "hertz-mindlin";
-    case scene::ContactLaw::linear:
-      return "linear";
-    case scene::ContactLaw::potential:
-      return "potential";
-  }
-  return "?";
-}
-
 // Signed overlap (m) of a sphere at x with radius r against body b, the unit normal from b into
 // the sphere, and b's velocity (zero unless a free sphere): the geometry of dem/sphere_world.cpp.
 struct Gap {
@@ -181,8 +168,12 @@ run::RunResult measure_trace(const scene::SceneDef& s, const Resolved& resolved,
   if (n == 0) throw PeerFailure(peer + ": recorded no steps");
   // Free spheres in scene order: the trace's columns.
   std::vector<int> free_index(s.bodies.size(), -1);
+  std::vector<bool> free(s.bodies.size(), false);
   int nfree = 0;
-  for (int k : free_spheres(s)) free_index[k] = nfree++;
+  for (int k : free_spheres(s)) {
+    free_index[static_cast<std::size_t>(k)] = nfree++;
+    free[static_cast<std::size_t>(k)] = true;
+  }
   for (std::size_t i = 0; i < n; ++i) {
     if (tr.x[i].size() != static_cast<std::size_t>(nfree) || tr.v[i].size() != tr.x[i].size())
       throw PeerFailure(peer + ": trace sample " + std::to_string(i) + " has " +
@@ -191,52 +182,62 @@ run::RunResult measure_trace(const scene::SceneDef& s, const Resolved& resolved,
   }
   const int rec = s.record.body;
   auto pos = [&](std::size_t i, int body) {
-    return free_index[body] < 0 ? s.bodies[body].position : tr.x[i][free_index[body]];
+    const int f = free_index[static_cast<std::size_t>(body)];
+    return f < 0 ? s.bodies[static_cast<std::size_t>(body)].position
+                 : tr.x[i][static_cast<std::size_t>(f)];
   };
   auto vel = [&](std::size_t i, int body) {
-    return free_index[body] < 0 ? Vec3(Vec3::Zero()) : tr.v[i][free_index[body]];
+    const int f = free_index[static_cast<std::size_t>(body)];
+    return f < 0 ? Vec3(Vec3::Zero()) : tr.v[i][static_cast<std::size_t>(f)];
   };
-  // The recorded body's largest signed overlap over every contact it can have, and that contact's
-  // approach speed: what dem/sphere_world.cpp's note_record feeds asperity's measures.
+  // The recorded body's largest signed overlap over every contact it can have and that
+  // contact's normal, pointing into the recorded body: what the worlds' contact output
+  // (core/body_contacts.hpp) feeds asperity's own measures.
+  struct Sample {
+    double s = -1e300;
+    Vec3 n = Vec3::UnitZ();
+  };
   auto contact_state = [&](std::size_t i) {
-    double best = -1e300, rate = 0;
-    auto consider = [&](int sphere, int other) {
-      const double radius = std::get<scene::SphereShape>(s.bodies[sphere].shape).radius;
-      const Gap g = gap(pos(i, sphere), radius, s.bodies[other], pos(i, other));
-      if (g.s > best) {
-        best = g.s;
-        rate = -(vel(i, sphere) - vel(i, other)).dot(g.n);
-      }
+    Sample best;
+    auto consider = [&](int sphere, int other, double sign) {
+      const double radius =
+          std::get<scene::SphereShape>(s.bodies[static_cast<std::size_t>(sphere)].shape).radius;
+      const Gap g =
+          gap(pos(i, sphere), radius, s.bodies[static_cast<std::size_t>(other)], pos(i, other));
+      if (g.s > best.s) best = {g.s, sign * g.n};
     };
-    const bool rec_is_sphere = std::holds_alternative<scene::SphereShape>(s.bodies[rec].shape);
+    const bool rec_is_sphere =
+        std::holds_alternative<scene::SphereShape>(s.bodies[static_cast<std::size_t>(rec)].shape);
     for (int b = 0; b < static_cast<int>(s.bodies.size()); ++b) {
       if (b == rec) continue;
       if (rec_is_sphere)
-        consider(rec, b);
-      else if (std::holds_alternative<scene::SphereShape>(s.bodies[b].shape))
-        consider(b, rec);  // a plane or box meets spheres only
+        consider(rec, b, 1.0);
+      else if (std::holds_alternative<scene::SphereShape>(
+                   s.bodies[static_cast<std::size_t>(b)].shape))
+        consider(b, rec, -1.0);  // a plane or box meets spheres only
     }
-    return std::pair{best, rate};
+    return best;
+  };
+  // Restitution: one definition for every model and peer (run/impact_measures.hpp), the normal
+  // force being the recorded force's component along the deepest contact's normal.
+  const int partner = run::restitution_partner(rec, free);
+  auto relative_velocity = [&](std::size_t i) {
+    return Vec3(vel(i, rec) - (partner >= 0 ? vel(i, partner) : Vec3(Vec3::Zero())));
   };
 
   run::RunResult r;
   run::ImpactMeasures im;
-  auto [s0, rate0] = contact_state(0);
-  im.start(tr.t[0], tr.force[0], s0);
-  // Restitution as asperity books it (note_record): the approach speed when the first contact
-  // starts, the separation speed when it ends.
-  bool touching = s0 > 0;
-  int started = touching ? 1 : 0, ended = 0;
-  double approach = touching ? rate0 : 0, separation = 0;
-  const long every = s.record.every;
+  run::Restitution restitution;
+  im.start(tr.t[0], tr.force[0], contact_state(0).s);
+  const long every = std::max(1, s.record.every);
   for (std::size_t i = 0; i < n; ++i) {
     if (i > 0) {
-      const auto [si, rate] = contact_state(i);
-      im.add(tr.t[i], tr.force[i], si);
-      const bool now = si > 0;
-      if (!touching && now && started++ == 0) approach = rate;
-      if (touching && !now && ended++ == 0) separation = -rate;
-      touching = now;
+      const Sample c = contact_state(i);
+      const bool before = im.touching;
+      im.add(tr.t[i], tr.force[i], c.s);
+      const Vec3 normal_force = tr.force[i].dot(c.n) * c.n;
+      restitution.add(before, im.touching, relative_velocity(i - 1), relative_velocity(i),
+                      normal_force, tr.t[i] - tr.t[i - 1]);
     }
     if (static_cast<long>(i) % every == 0 || i + 1 == n) {
       const Vec3& f = tr.force[i];
@@ -244,36 +245,28 @@ run::RunResult measure_trace(const scene::SceneDef& s, const Resolved& resolved,
     }
   }
   r.status = im.first_contact_time < 0 ? "no_contact" : "ok";
-  Json& j = r.summary;
-  j["status"] = r.status;
-  j["scene"] = s.name;
-  j["model"] = peer;
+  run::SummaryJson& j = r.summary;
+  const run::RunIdentity id{.scene = s.name,
+                            .model = peer,
+                            .contact_law = scene::contact_law_name(s.contact.law),
+                            .recorded_body = s.bodies[static_cast<std::size_t>(rec)].name};
+  run::write_measures(j, id, r.status, "", im, tr.t.back(), restitution.value(), std::nullopt);
   j["peer_version"] = tr.version;
-  j["contact_law"] = law_key(s.contact.law);
-  j["recorded_body"] = s.bodies[rec].name;
-  j["peak_force"] = im.peak_force;
-  j["impulse"] = im.impulse;
-  j["contact_duration"] = im.duration_until(tr.t.back());
-  j["first_contact_time"] = im.first_contact_time < 0 ? Json() : Json(im.first_contact_time);
-  j["max_overlap"] = im.max_overlap;
-  j["restitution"] = ended > 0 && approach > 0 ? Json(separation / approach) : Json();
   if (const auto impact = run::first_impact(s)) {
     auto motion = [&](int body) {
-      if (free_index[body] < 0) return run::BodyMotion{};
-      return run::BodyMotion{.v = tr.v[n - 1][free_index[body]],
-                             .w = tr.final_w.at(free_index[body])};
+      const int f = free_index[static_cast<std::size_t>(body)];
+      if (f < 0) return run::BodyMotion{};
+      return run::BodyMotion{.v = tr.v[n - 1][static_cast<std::size_t>(f)],
+                             .w = tr.final_w.at(static_cast<std::size_t>(f))};
     };
-    run::add_rebound_measures(s, *impact, motion(rec), motion(impact->partner), ended > 0, j);
+    run::add_rebound_measures(s, *impact, motion(rec), motion(impact->partner), restitution.ended(),
+                              j);
   }
   j["dt"] = resolved.dt;
-  j["steps"] = resolved.steps;
-  j["simulated_time"] = resolved.dt * static_cast<double>(resolved.steps);
-  j["cpu_seconds"] = tr.cpu_seconds;
-  j["wall_seconds"] = tr.wall_seconds;
-  const Adapter* a = nullptr;
-  for (const Adapter& x : adapters())
-    if (peer == x.name) a = &x;
-  if (a) j["cpu_seconds_note"] = a->cpu_note;
+  run::write_run(j, resolved.steps, resolved.dt * static_cast<double>(resolved.steps), false,
+                 tr.cpu_seconds, tr.wall_seconds);
+  for (const Adapter& a : adapters())
+    if (peer == a.name) j["cpu_seconds_note"] = a.cpu_note;
   for (const auto& [k, v] : tr.extra.items()) j[k] = v;
   return r;
 }

@@ -120,10 +120,7 @@ OJson recommend(const fs::path& scene_file, const fs::path& guidelines_file,
     change = {{"model", model}, {"shape.faces", rec["resolution"]}, {"contact.law", "potential"}};
     // The guideline holds for the study's penalty (its peak forces depend on it, docs/study.md).
     const io::Json alpha = g.value("penalty_alpha", io::Json());
-    if (alpha.is_number() && b.material >= 0) {
-      change["contact.penalty"] =
-          alpha.get<double>() * s.materials[static_cast<std::size_t>(b.material)].young;
-    }
+    if (alpha.is_number()) change["contact.penalty_alpha"] = alpha.get<double>();
   }
   const io::Json range = g.value("particle_diameter_range", io::Json());
   const double study_speed = g.value("speed", 0.0);

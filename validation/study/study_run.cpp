@@ -19,6 +19,7 @@
 #include <sstream>
 #include <thread>
 
+#include "core/clock.hpp"
 #include "core/error.hpp"
 #include "fdem/fdem_world.hpp"
 #include "fdem/structured_mesh.hpp"
@@ -37,14 +38,6 @@ namespace fs = std::filesystem;
 using OJson = nlohmann::ordered_json;
 
 namespace {
-
-// CPU seconds of the calling thread: std::clock() counts the whole process, which with several
-// workers would charge each case with its neighbours' work.
-double thread_cpu_seconds() {
-  timespec ts{};
-  clock_gettime(CLOCK_THREAD_CPUTIME_ID, &ts);
-  return static_cast<double>(ts.tv_sec) + 1e-9 * static_cast<double>(ts.tv_nsec);
-}
 
 std::string read_text(const fs::path& file) {
   std::ifstream in(file, std::ios::binary);
@@ -280,7 +273,7 @@ OJson case_scene(const StudyDef& def, const ParticlePlan& pp, const CaseKey& c) 
       {"contact", {{"law", c.model == ModelKind::sphere ? "hertz" : "potential"}}},
       {"record", {{"force_on", "particle"}, {"every", every}}}};
   if (def.penalty_alpha && c.model != ModelKind::sphere) {
-    scene["contact"]["penalty"] = *def.penalty_alpha * def.material.young;
+    scene["contact"]["penalty_alpha"] = *def.penalty_alpha;
   }
   if (def.end_after_separation && c.model != ModelKind::sphere) {
     scene["record"]["end_after_separation"] = *def.end_after_separation * pp.contact_time;
@@ -308,8 +301,8 @@ void thin_rows(run::RunResult& r, int rows) {
   r.energy = std::move(e);
 }
 
-// Predicted critical step of the particle (fem or rigid) above the block, times run_fdem's
-// default safety (0.5 deformable, 0.1 rigid): only used to keep about `rows` rows per case.
+// Predicted critical step of the particle (fem or rigid) above the block, times the runners'
+// default safety (run/step_policy.hpp): only used to keep about `rows` rows per case.
 double estimated_dt(const TetMesh& tets, const StudyDef& def, fdem::BodyKind kind, double radius) {
   fdem::WorldDef w;
   TetMesh m = tets;
@@ -325,10 +318,11 @@ double estimated_dt(const TetMesh& tets, const StudyDef& def, fdem::BodyKind kin
        .kind = fdem::BodyKind::fixed,
        .mesh = fdem::box_mesh(Vec3(-half, -half, -half), Vec3(half, half, 0), 1, 1, 1),
        .material = def.block_material});
-  w.record_body = 0;
-  if (def.penalty_alpha) w.contact.penalty = *def.penalty_alpha * def.material.young;
+  if (def.penalty_alpha) w.contact.alpha = *def.penalty_alpha;
   const fdem::World world = fdem::make_world(w);
-  return (kind == fdem::BodyKind::rigid ? 0.1 : 0.5) * fdem::critical_step(world).critical;
+  return run::default_safety(kind == fdem::BodyKind::rigid ? run::StepRegime::fdem_rigid
+                                                           : run::StepRegime::fdem_deformable) *
+         fdem::critical_step(world).critical;
 }
 
 }  // namespace
@@ -521,7 +515,8 @@ StudyOutcome run_study(const StudyDef& def, const fs::path& out, const StudyRunO
         run::RunResult result = run::run_scene(scene, run::RunOptions{});
         const double cpu = thread_cpu_seconds() - run_cpu0;
         thin_rows(result, def.rows);
-        // The run's own cpu_seconds is the process's clock (every worker); this is the case's.
+        // The case's CPU on this worker thread (the run's own cpu_seconds counts the time loop
+        // only).
         result.summary["cpu_seconds_thread"] = cpu;
         run::write_outputs(result, dir);
         OJson record = {

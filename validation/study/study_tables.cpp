@@ -8,6 +8,7 @@
 #include <sstream>
 
 #include "io/atomic_file.hpp"
+#include "io/csv.hpp"
 #include "io/json_file.hpp"
 
 namespace asperity::study {
@@ -106,17 +107,14 @@ namespace {
 // writes them), so a table and the case's summary.json hold the same value.
 std::string cell(const OJson& v) {
   if (v.is_null()) return "";
-  if (v.is_string()) {
-    const std::string s = v.get<std::string>();
-    return s.find_first_of(",\"\n") == std::string::npos ? s : "\"" + s + "\"";
-  }
+  if (v.is_string()) return io::csv_field(v.get<std::string>());
   return v.dump();
 }
 
 std::string csv(const std::vector<std::string>& header,
                 const std::vector<std::vector<OJson>>& rows) {
   std::ostringstream s;
-  for (std::size_t i = 0; i < header.size(); ++i) s << (i ? "," : "") << header[i];
+  for (std::size_t i = 0; i < header.size(); ++i) s << (i ? "," : "") << io::csv_field(header[i]);
   s << "\n";
   for (const auto& r : rows) {
     for (std::size_t i = 0; i < r.size(); ++i) s << (i ? "," : "") << cell(r[i]);

@@ -1,0 +1,51 @@
+// Hertz–Mindlin: Hertz's normal force (contact/hertz.hpp) with Mindlin's no-slip tangential
+// stiffness k_t = 8 G* a, a = √(R* δ) (Mindlin 1949), a Coulomb cap (contact/tangential_spring.hpp)
+// and viscous damping of the same Tsuji form in both directions. A pure function of one contact:
+// the law LIGGGHTS calls `model hertz tangential history` and YADE
+// Law2_ScGeom_MindlinPhys_Mindlin.
+#pragma once
+
+#include <cmath>
+
+#include "contact/hertz.hpp"
+#include "contact/tangential_spring.hpp"
+#include "core/vec.hpp"
+
+namespace asperity::contact {
+
+struct HertzMindlinParams {
+  double young_eff = 0;   // E*, Pa
+  double shear_eff = 0;   // G*, Pa
+  double radius_eff = 0;  // R*, m
+  double mass_eff = 0;    // m*, kg
+  double zeta = 0;        // Tsuji damping (restitution_damping.hpp), both directions
+  double friction = 0;    // Coulomb μ
+};
+
+struct HertzMindlinForce {
+  NormalForce normal;          // magnitude along n
+  TangentialForce tangential;  // in the tangent plane, with the new spring (history)
+};
+
+// overlap δ > 0 (m); overlap_rate δ̇ (m/s, approaching > 0); slip_velocity: tangential velocity
+// of body 1 relative to body 2 at the contact point (m/s); spring: last step's spring force
+// rotated into the current tangent plane (rotate_into_tangent_plane); dt the step (s).
+// The tangential dashpot c_t = ζ √(m* k_t / 1.5) is the normal one's Tsuji coefficient with the
+// tangent stiffness k_t in place of S_n = 3/2 K δ^{1/2}.
+inline HertzMindlinForce hertz_mindlin(double overlap, double overlap_rate,
+                                       const Vec3& slip_velocity, const Vec3& spring, double dt,
+                                       const HertzMindlinParams& p) {
+  HertzMindlinForce out;
+  out.normal = hertz_normal(overlap, overlap_rate,
+                            {.young_eff = p.young_eff,
+                             .radius_eff = p.radius_eff,
+                             .mass_eff = p.mass_eff,
+                             .zeta = p.zeta});
+  const double kt = 8.0 * p.shear_eff * std::sqrt(p.radius_eff * overlap);
+  const double ct = p.zeta * std::sqrt(p.mass_eff * kt / 1.5);
+  out.tangential = tangential_spring(spring, slip_velocity, dt, out.normal.force,
+                                     {.stiffness = kt, .damping = ct, .friction = p.friction});
+  return out;
+}
+
+}  // namespace asperity::contact

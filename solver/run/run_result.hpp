@@ -1,0 +1,37 @@
+// What a run produces, whichever model ran it: the rows of force.csv and energy.csv and the
+// summary.json object (run/summary.hpp writes its core), and the options a caller may set.
+#pragma once
+
+#include <optional>
+#include <string>
+#include <vector>
+
+#include <nlohmann/json.hpp>
+
+namespace asperity::run {
+
+struct ForceRow {
+  double t, fx, fy, fz, f;
+};
+struct EnergyRow {
+  double t, kinetic, elastic, contact, gravity, dissipated, total;
+};
+
+struct RunOptions {
+  std::optional<double> dt;         // overrides the scene's dt
+  std::optional<double> dt_factor;  // dt = factor × the predicted critical step (stability
+                                    // sweeps; implies allow_unsafe_dt); wins over `dt`
+  bool allow_unsafe_dt = false;
+  bool keep_rows = true;  // fill force and energy rows (off for sweeps)
+  bool progress = false;  // progress line on stderr for long runs
+};
+
+struct RunResult {
+  std::string status;   // "ok", "unstable" or "no_contact"
+  std::string message;  // why, when unstable
+  nlohmann::ordered_json summary;
+  std::vector<ForceRow> force;
+  std::vector<EnergyRow> energy;
+};
+
+}  // namespace asperity::run

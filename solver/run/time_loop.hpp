@@ -1,0 +1,92 @@
+// The one time loop of every model (spheres, FEM/DEM): step → contact output → impact measures
+// → energy check → rows → progress, until the duration, an instability, or the recorded body's
+// separation. A model plugs in through a small adapter (run_spheres.cpp, run_fdem.cpp) with:
+//   void prepare(bool energy_wanted)   before the step (FEM/DEM computes energy integrals only
+//                                      when asked)
+//   void step(double dt)
+//   std::string failure()              after the step: why it went unstable, or empty
+//   const BodyContacts& contacts()     this step's contact output (core/body_contacts.hpp)
+//   Vec3 relative_velocity()           recorded body's centre relative to its partner's
+//   EnergyBalance energy(); bool finite(); double time(); long check_every()
+//   int record                         the recorded body's index in contacts()
+#pragma once
+
+#include "core/body_contacts.hpp"
+#include "core/clock.hpp"
+#include "core/energy.hpp"
+#include "run/impact_measures.hpp"
+#include "run/run_monitor.hpp"
+#include "run/run_scene.hpp"
+#include "run/step_policy.hpp"
+#include "scene/scene.hpp"
+
+namespace asperity::run {
+
+struct LoopOutcome {
+  ImpactMeasures impact;
+  Restitution restitution;
+  std::string status, message;
+  double energy_drift = 0;
+  bool ended_by_separation = false;
+  double cpu_seconds = 0, wall_seconds = 0;
+};
+
+template <class Model>
+LoopOutcome time_loop(Model& m, const scene::SceneDef& s, const RunOptions& options,
+                      const StepChoice& step, RunResult& result) {
+  LoopOutcome out;
+  const auto wall0 = std::chrono::steady_clock::now();
+  const double cpu0 = thread_cpu_seconds();
+  const int rec = m.record;
+  auto sample_force = [&] { return Vec3(m.contacts().force.col(rec)); };
+  auto sample_overlap = [&] { return m.contacts().overlap[static_cast<std::size_t>(rec)]; };
+  out.impact.start(m.time(), sample_force(), sample_overlap());
+  const EnergyBalance e0 = m.energy();
+  RunMonitor monitor(s.name, e0, s.unstable_energy_growth, step.steps, options.progress);
+  auto push_rows = [&](const EnergyBalance& e) {
+    if (!options.keep_rows) return;
+    const Vec3 f = sample_force();
+    result.force.push_back({m.time(), f.x(), f.y(), f.z(), f.norm()});
+    result.energy.push_back(
+        {m.time(), e.kinetic, e.elastic, e.contact, e.gravity, e.dissipated, e.total()});
+  };
+  push_rows(e0);
+  const long check_every = m.check_every();
+  const int every = std::max(1, s.record.every);
+  for (long k = 1; k <= step.steps && !monitor.unstable(); ++k) {
+    const bool row_due = k % every == 0 || k == step.steps;
+    m.prepare(row_due || k % check_every == 0);
+    const bool touching_before = out.impact.touching;
+    const Vec3 v_before = m.relative_velocity();
+    m.step(step.dt);
+    if (const std::string why = m.failure(); !why.empty()) {
+      monitor.flag(why);
+      break;
+    }
+    out.impact.add(m.time(), sample_force(), sample_overlap());
+    out.restitution.add(touching_before, out.impact.touching, v_before, m.relative_velocity(),
+                        m.contacts().normal_force.col(rec), step.dt);
+    out.ended_by_separation = s.record.end_after_separation &&
+                              out.impact.separated_for(m.time(), *s.record.end_after_separation);
+    // Energy is checked where the model computed it (prepare's flag); a row written only
+    // because the run stops at separation carries the model's latest energies unchecked.
+    if (row_due || k % check_every == 0) {
+      const EnergyBalance e = m.energy();
+      monitor.check_energy(m.time(), e, m.finite());
+      if (row_due) push_rows(e);
+    }
+    if (out.ended_by_separation && !row_due) push_rows(m.energy());
+    monitor.progress(k);
+    if (out.ended_by_separation) break;
+  }
+  monitor.finish();
+  out.cpu_seconds = thread_cpu_seconds() - cpu0;
+  out.wall_seconds =
+      std::chrono::duration<double>(std::chrono::steady_clock::now() - wall0).count();
+  out.status = monitor.status(out.impact.first_contact_time >= 0);
+  out.message = monitor.message();
+  out.energy_drift = monitor.drift();
+  return out;
+}
+
+}  // namespace asperity::run
