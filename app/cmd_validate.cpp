@@ -12,6 +12,9 @@
 #include "case.hpp"
 #include "cluster/task_pool.hpp"
 #include "core/error.hpp"
+#include "junit.hpp"
+#include "peers/external_solver.hpp"
+#include "peers/peer.hpp"
 #include "run/run_scene.hpp"
 #include "run/stability_sweep.hpp"
 
@@ -26,22 +29,73 @@ std::string csv_escape(const std::string& s) {
   return o + "\"";
 }
 
-// One case: run, outputs and check.json under DIR/cases/NAME/; the check (and the run's CPU) as
-// the payload.
-cluster::TaskReport run_one(const validation::CaseDef& def, const fs::path& out) try {
-  const validation::CaseResult r = validation::run_case(def);
-  if (r.sweep) {
-    run::write_stability(*r.sweep, out / "cases" / r.def.name);
-  } else {
-    run::write_outputs(r.run, out / "cases" / r.def.name);
+// The case run by asperity (its outputs written) or by the solver (it wrote them); a solver that
+// fails fails the case, with its one-line reason on stderr.
+validation::CaseResult solve(const validation::CaseDef& c, const peers::CaseSolver& solver,
+                             const fs::path& dir) {
+  if (!solver.any()) {
+    validation::CaseResult r = validation::run_case(c);
+    if (r.sweep) {
+      run::write_stability(*r.sweep, dir);
+    } else {
+      run::write_outputs(r.run, dir);
+    }
+    return r;
   }
+  try {
+    return validation::check_case(c, peers::solve_case(solver, c, dir));
+  } catch (const peers::PeerFailure& e) {
+    std::fprintf(stderr, "asperity: %s\n", e.what());
+    return validation::failed_case(c, e.what());
+  }
+}
+
+std::vector<validation::JUnitCase> junit_cases(const validation::CaseResult& r) {
+  std::vector<validation::JUnitCase> out;
+  const double cpu = r.run.summary.is_object() ? r.run.summary.value("cpu_seconds", 0.0) : 0.0;
+  if (!r.error.empty()) {
+    out.push_back({.classname = r.def.name,
+                   .name = "run",
+                   .seconds = cpu,
+                   .error = true,
+                   .message = r.error,
+                   .details = r.def.file.string()});
+  }
+  for (const validation::CheckResult& c : r.checks) {
+    out.push_back({.classname = r.def.name,
+                   .name = c.check.quantity,
+                   .seconds = cpu,
+                   .failed = !c.passed,
+                   .message = validation::check_message(c),
+                   .details = c.check.why});
+  }
+  return out;
+}
+
+// One case: solved (by asperity, a peer or a --solver-cmd), outputs and check.json under
+// DIR/cases/NAME/; the check, the run's CPU and the case's JUnit rows as the payload.
+cluster::TaskReport run_one(const validation::CaseDef& def, const peers::CaseSolver& solver,
+                            const fs::path& out) try {
+  const fs::path dir = out / "cases" / def.name;
+  const validation::CaseResult r = solve(def, solver, dir);
+  fs::create_directories(dir);
   const nlohmann::ordered_json j = validation::to_json(r);
   {
     std::ofstream c(out / "cases" / r.def.name / "check.json");
     c << j.dump(2) << "\n";
   }
-  const nlohmann::ordered_json payload = {{"check", j},
-                                          {"cpu", r.run.summary.value("cpu_seconds", 0.0)}};
+  nlohmann::ordered_json rows = nlohmann::ordered_json::array();
+  for (const validation::JUnitCase& c : junit_cases(r)) {
+    rows.push_back({{"classname", c.classname},
+                    {"name", c.name},
+                    {"seconds", c.seconds},
+                    {"failed", c.failed},
+                    {"error", c.error},
+                    {"message", c.message},
+                    {"details", c.details}});
+  }
+  const double cpu = r.run.summary.is_object() ? r.run.summary.value("cpu_seconds", 0.0) : 0.0;
+  const nlohmann::ordered_json payload = {{"check", j}, {"cpu", cpu}, {"junit", rows}};
   return {.failed = !r.passed, .note = r.def.name, .payload = payload.dump()};
 } catch (const std::exception& e) {
   // An error stops the command as it did before cases ran in a pool: raised again below, on
@@ -62,9 +116,12 @@ void rethrow_errors(const std::vector<cluster::TaskReport>& reports) {
   }
 }
 
-void write_report(const std::vector<cluster::TaskReport>& reports, const fs::path& out, bool quiet);
+void write_report(const std::vector<cluster::TaskReport>& reports, const fs::path& out,
+                  const std::string& solved_by, bool quiet);
 
-int cmd_validate(const std::vector<fs::path>& paths, const fs::path& out, int jobs, bool quiet) {
+int cmd_validate(const std::vector<fs::path>& paths, const fs::path& out, int jobs,
+                 const peers::CaseSolver& solver, const std::optional<fs::path>& junit,
+                 bool quiet) {
   std::vector<fs::path> files;
   for (const fs::path& p : paths) {
     for (const fs::path& f : validation::find_cases(p)) files.push_back(f);
@@ -82,6 +139,11 @@ int cmd_validate(const std::vector<fs::path>& paths, const fs::path& out, int jo
     }
   }
   check_out_folder(out);
+  if (solver.any()) peers::check_solver(solver, cases);
+  if (junit) fs::remove(*junit);
+  const std::string solved_by = solver.external() ? "the command `" + solver.command + "`"
+                                : solver.any()    ? "the peer " + solver.peer
+                                                  : "asperity";
 
   cluster::World world;
   return world.guard([&] {
@@ -94,7 +156,7 @@ int cmd_validate(const std::vector<fs::path>& paths, const fs::path& out, int jo
     int reported = 0;
     const std::vector<cluster::TaskReport> reports = cluster::run_tasks(
         world, static_cast<int>(cases.size()), order, jobs,
-        [&](int k) { return run_one(cases[static_cast<std::size_t>(k)], out); },
+        [&](int k) { return run_one(cases[static_cast<std::size_t>(k)], solver, out); },
         [&](const cluster::TaskReport& r, int) {
           ++reported;
           if (quiet) return;
@@ -119,14 +181,32 @@ int cmd_validate(const std::vector<fs::path>& paths, const fs::path& out, int jo
     rethrow_errors(reports);
     int failed = 0;
     for (const cluster::TaskReport& r : reports) failed += r.failed ? 1 : 0;
-    if (world.root()) write_report(reports, out, quiet);
+    if (world.root()) {
+      write_report(reports, out, solved_by, quiet);
+      if (junit) {
+        std::vector<validation::JUnitCase> rows;
+        for (const cluster::TaskReport& r : reports) {
+          const nlohmann::json p = nlohmann::json::parse(r.payload);
+          for (const auto& c : p["junit"]) {
+            rows.push_back({.classname = c["classname"].get<std::string>(),
+                            .name = c["name"].get<std::string>(),
+                            .seconds = c["seconds"].get<double>(),
+                            .failed = c["failed"].get<bool>(),
+                            .error = c["error"].get<bool>(),
+                            .message = c["message"].get<std::string>(),
+                            .details = c["details"].get<std::string>()});
+          }
+        }
+        validation::write_junit(*junit, "asperity validate (" + solved_by + ")", rows);
+      }
+    }
     return failed == 0 ? kExitOk : kExitFailure;
   });
 }
 
 // DIR/results.csv, report.md and validation.json from every case's check, in the cases' order.
 void write_report(const std::vector<cluster::TaskReport>& reports, const fs::path& out,
-                  bool quiet) {
+                  const std::string& solved_by, bool quiet) {
   nlohmann::ordered_json all = nlohmann::ordered_json::array();
   std::ostringstream csv, md;
   csv << "case,quantity,reference,expected,got,rel_error,rel_tol,abs_tol,passed,cpu_seconds\n";
@@ -150,6 +230,7 @@ void write_report(const std::vector<cluster::TaskReport>& reports, const fs::pat
   }
   const std::size_t n = reports.size();
   md << "# asperity validation report\n\n"
+     << "Solved by " << solved_by << ".\n\n"
      << n - failed << " of " << n << " cases pass; " << cpu_total << " s CPU in all.\n\n"
      << "Each case is a scene plus expected values (`validation/cases/`). `rel error` is "
         "(got − expected)/|expected|; a check passes when |got − expected| ≤ rel_tol·|expected| + "
@@ -183,6 +264,7 @@ void write_report(const std::vector<cluster::TaskReport>& reports, const fs::pat
   std::ofstream(out / "results.csv") << csv.str();
   std::ofstream(out / "report.md") << md.str();
   nlohmann::ordered_json summary;
+  summary["solver"] = solved_by;
   summary["cases"] = n;
   summary["passed"] = n - failed;
   summary["failed"] = failed;
@@ -202,6 +284,8 @@ void add_validate_command(CLI::App& app, Action& action) {
     std::vector<fs::path> cases;
     fs::path out;
     int jobs = 1;
+    peers::CaseSolver solver;
+    std::optional<fs::path> junit;
     bool quiet = false;
   };
   auto args = std::make_shared<Args>();
@@ -214,9 +298,26 @@ void add_validate_command(CLI::App& app, Action& action) {
   validate->add_option("--out", args->out, "Output folder")->required();
   validate->add_option("-j,--jobs", args->jobs, "Worker threads per process (default 1)")
       ->check(CLI::PositiveNumber);
+  std::string names;
+  for (const peers::Adapter& a : peers::adapters())
+    names += std::string(names.empty() ? "" : "|") + a.name;
+  validate->add_option("--solver", args->solver.peer,
+                       "Solve the cases with a peer (" + names +
+                           ") at asperity's step, and gate it (docs/crosscheck.md)");
+  validate->add_option("--solver-program", args->solver.program,
+                       "The --solver peer's executable (default: its program on PATH)");
+  validate->add_option("--solver-cmd", args->solver.command,
+                       "Solve the cases with any program that honours the contract: a shell "
+                       "command line where {scene} is the scene file and {out} the folder for its "
+                       "summary.json and force.csv");
+  validate->add_option("--junit", args->junit,
+                       "Also write JUnit XML: one testcase per case and check");
   validate->add_flag("-q,--quiet", args->quiet, "Only errors on stderr");
   validate->callback([args, &action] {
-    action = [args] { return cmd_validate(args->cases, args->out, args->jobs, args->quiet); };
+    action = [args] {
+      return cmd_validate(args->cases, args->out, args->jobs, args->solver, args->junit,
+                          args->quiet);
+    };
   });
 }
 

@@ -4,6 +4,7 @@
 #include <algorithm>
 #include <cmath>
 #include <numbers>
+#include <sstream>
 
 #include "contact/hertz_impact.hpp"
 #include "core/error.hpp"
@@ -261,17 +262,60 @@ std::vector<std::filesystem::path> find_cases(const std::filesystem::path& path)
 }
 
 CaseResult run_case(const CaseDef& def) {
-  CaseResult r;
-  r.def = def;
   if (def.sweep_factors) {
     const run::StabilityResult sweep =
         run::stability_sweep(def.scene, *def.sweep_factors, def.sweep_reference_factor);
-    r.run.status = "ok";
-    r.run.summary = sweep.summary;
+    run::RunResult run;
+    run.status = "ok";
+    run.summary = sweep.summary;
+    CaseResult r = check_case(def, std::move(run));
     r.sweep = sweep;
-  } else {
-    r.run = run::run_scene(def.scene);
+    return r;
   }
+  return check_case(def, run::run_scene(def.scene));
+}
+
+CaseResult failed_case(const CaseDef& def, const std::string& error) {
+  CaseResult r;
+  r.def = def;
+  r.run.status = "failed";
+  r.error = error;
+  r.passed = false;
+  return r;
+}
+
+std::string check_message(const CheckResult& c) {
+  std::ostringstream m;
+  m.precision(8);
+  m << c.check.quantity << ": got ";
+  if (c.check.reference == "equals") {
+    m << c.got_text << ", expected " << c.check.text;
+    return m.str();
+  }
+  if (std::isfinite(c.got))
+    m << c.got;
+  else
+    m << "(missing)";
+  if (c.check.reference == "max") {
+    m << ", expected at most " << c.check.expected;
+  } else if (c.check.reference == "min") {
+    m << ", expected at least " << c.check.expected;
+  } else if (c.check.reference == "range") {
+    m << ", expected within [" << c.check.expected << ", " << c.check.upper << "]";
+  } else {
+    m << ", expected " << c.check.expected << " (" << c.check.reference << ")";
+    if (std::isfinite(c.got) && c.check.expected != 0)
+      m << ", rel error " << (c.got - c.check.expected) / std::abs(c.check.expected);
+    m << ", tolerance " << c.check.rel_tol << " rel";
+    if (c.check.abs_tol != 0) m << " + " << c.check.abs_tol << " abs";
+  }
+  return m.str();
+}
+
+CaseResult check_case(const CaseDef& def, run::RunResult run) {
+  CaseResult r;
+  r.def = def;
+  r.run = std::move(run);
   r.passed = true;
   for (const Check& ch : def.checks) {
     CheckResult cr;
@@ -310,6 +354,8 @@ nlohmann::ordered_json to_json(const CaseResult& r) {
   j["file"] = r.def.file.string();
   j["passed"] = r.passed;
   j["status"] = r.run.status;
+  if (!r.error.empty()) j["error"] = r.error;
+  j["checks"] = nlohmann::ordered_json::array();
   for (const CheckResult& c : r.checks) {
     nlohmann::ordered_json k;
     k["quantity"] = c.check.quantity;

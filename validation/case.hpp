@@ -52,6 +52,7 @@ struct CaseResult {
   std::optional<run::StabilityResult> sweep;  // set for a sweep case
   std::vector<CheckResult> checks;
   bool passed = false;
+  std::string error;  // the solver failed (a peer or --solver-cmd): why; no checks then
 };
 
 // What is wrong with a case name as a folder name under --out ("" when nothing): empty, "." or
@@ -65,6 +66,16 @@ CaseDef load_case(const std::filesystem::path& file);
 std::vector<std::filesystem::path> find_cases(const std::filesystem::path& path);
 
 CaseResult run_case(const CaseDef& def);
+
+// Checks a run of the case's scene (by asperity, a peer or an external solver) against the case's
+// expectations.
+CaseResult check_case(const CaseDef& def, run::RunResult run);
+
+// A case whose solver failed: no checks, not passed, `error` says why.
+CaseResult failed_case(const CaseDef& def, const std::string& error);
+
+// One line per check that failed: "quantity: got G, expected E (rel error R, tolerance T)".
+std::string check_message(const CheckResult& c);
 
 nlohmann::ordered_json to_json(const CaseResult& r);
 

@@ -1,11 +1,14 @@
 # Runs an asperity sphere scene in YADE: `yade -n -x scene_to_yade.py INPUT.json OUTDIR`.
 #
-# `asperity crosscheck` writes INPUT.json (the scene as asperity resolved it: materials, bodies,
-# law, dt, step count, the damping of each material pair) and reads back what this script writes:
-#   OUTDIR/raw.csv   t,fx,fy,fz,s,rate  every step: YADE's total contact force on the recorded body,
-#                    its largest signed overlap s (m) and that contact's approach speed (m/s)
-#   OUTDIR/raw.json  final velocities, CPU seconds of a run without the per-step recorder, the
-#                    stiffness each contact of the recorded body got, YADE's version
+# The YADE adapter (validation/peers/yade.cpp) writes INPUT.json (the scene as asperity resolved
+# it: materials, bodies, law, dt, step count, the damping of each material pair) and reads back
+# what this script writes:
+#   OUTDIR/raw.csv   every step: t, YADE's total contact force on the recorded body (whichever body
+#                    it is: sphere, plane or box), then x,y,z,vx,vy,vz of each free sphere in scene
+#                    order; the adapter measures overlap, contact times and rebound from these with
+#                    the code that measures asperity's runs
+#   OUTDIR/raw.json  final angular velocities, CPU seconds of a run without the per-step recorder,
+#                    the stiffness each contact got, YADE's version
 # On any error it writes OUTDIR/error.txt and exits with status 2.
 #
 # The mapping (docs/crosscheck.md explains each choice):
@@ -200,82 +203,61 @@ def build(spec, record):
 
 class Recorder:
     """Per step, after the interaction loop (forces at the current positions): the recorded body's
-    total contact force, its largest signed overlap and that contact's approach speed."""
+    total contact force and every free sphere's position and velocity."""
 
     def __init__(self, spec, ids, owner, mats, law):
-        self.spec, self.ids, self.owner, self.law = spec, ids, owner, law
-        self.rec = ids[spec["record_body"]]
-        self.others = []
-        byname = {b["name"]: b for b in spec["bodies"]}
-        self.rec_body = byname[spec["record_body"]]
-        self.rec_radius = self.rec_body["shape"]["radius"] if self.rec_body["shape"]["type"] == "sphere" else None
-        for b in spec["bodies"]:
-            if b["name"] != spec["record_body"]:
-                self.others.append((b, ids[b["name"]]))
-        self.mats = mats
+        self.spec, self.ids, self.owner, self.law, self.mats = spec, ids, owner, law, mats
+        rec_name = spec["record_body"]
+        # A wall has one YADE copy per sphere material (see build): its force is their sum.
+        self.rec_ids = [bid for bid, b in owner.items() if b["name"] == rec_name]
+        self.free = [ids[b["name"]] for b in spec["bodies"]
+                     if b["shape"]["type"] == "sphere" and not b["fixed"]]
         self.stiffness = {}
         self.n_interactions = -1
         self.out = None  # raw.csv, streamed: long runs must not hold every row in memory
 
-    def gap_rate(self, b, bid):
-        """Signed overlap (m) and approach speed (m/s) of the recorded sphere against body b."""
-        r = self.rec_radius
-        st = O.bodies[self.rec].state
-        x, v = st.pos, st.vel
-        s = b["shape"]
-        if s["type"] == "sphere":
-            ot = O.bodies[bid].state
-            d = x - ot.pos
-            dist = d.norm()
-            n = d / dist if dist > 0 else d
-            return r + s["radius"] - dist, -(v - ot.vel).dot(n)
-        if s["type"] == "plane":
-            n = s["normal"]
-            dist = sum((x[k] - s["point"][k]) * n[k] for k in range(3))
-            return r - dist, -sum(v[k] * n[k] for k in range(3))
-        lo, hi = s["min"], s["max"]
-        c = [min(max(x[k], lo[k]), hi[k]) for k in range(3)]
-        d = [x[k] - c[k] for k in range(3)]
-        dist = math.sqrt(sum(t * t for t in d))
-        if dist == 0:
-            return r, 0.0
-        return r - dist, -sum(v[k] * d[k] / dist for k in range(3))
-
     def check_stiffness(self):
+        """The stiffness YADE gave each new contact of the recorded body, against asperity's
+        4/3 E* sqrt(R*) and 8 G* sqrt(R*) (R* = r for a plane or box)."""
         n = O.interactions.countReal()
         if n == self.n_interactions:
             return
         self.n_interactions = n
-        for i in O.interactions.withBody(self.rec):
-            if not i.isReal:
-                continue
-            key = (i.id1, i.id2)
-            if key in self.stiffness:
-                continue
-            b = self.owner[i.id2 if i.id1 == self.rec else i.id1]
-            mr, mo = self.mats[self.rec_body["material"]], self.mats[b["material"]]
-            r_eff = self.rec_radius
-            if b["shape"]["type"] == "sphere":
-                r_eff = self.rec_radius * b["shape"]["radius"] / (self.rec_radius + b["shape"]["radius"])
-            if self.law == "linear":
-                got = {"kn": i.phys.kn, "ks": i.phys.ks}
-                want = {"kn": self.spec["kn"], "ks": self.spec["kt"]}
-            else:
-                got = {"kno": i.phys.kno, "kso": i.phys.kso}
-                want = {"kno": 4 / 3 * e_star(mr, mo) * math.sqrt(r_eff), "kso": 8 * g_star(mr, mo) * math.sqrt(r_eff)}
-            self.stiffness[key] = {"partner": b["name"], "yade": got, "asperity": want,
-                                   "rel_diff": max(abs(got[k] - want[k]) / abs(want[k]) for k in want if want[k] != 0) if any(want.values()) else 0.0}
+        for rid in self.rec_ids:
+            for i in O.interactions.withBody(rid):
+                if not i.isReal or (i.id1, i.id2) in self.stiffness:
+                    continue
+                a, b = self.owner[i.id1], self.owner[i.id2]
+                if a["shape"]["type"] != "sphere":
+                    a, b = b, a
+                ma, mb = self.mats[a["material"]], self.mats[b["material"]]
+                r_eff = a["shape"]["radius"]
+                if b["shape"]["type"] == "sphere":
+                    r_eff = r_eff * b["shape"]["radius"] / (r_eff + b["shape"]["radius"])
+                if self.law == "linear":
+                    got = {"kn": i.phys.kn, "ks": i.phys.ks}
+                    want = {"kn": self.spec["kn"], "ks": self.spec["kt"]}
+                else:
+                    got = {"kno": i.phys.kno, "kso": i.phys.kso}
+                    want = {"kno": 4 / 3 * e_star(ma, mb) * math.sqrt(r_eff),
+                            "kso": 8 * g_star(ma, mb) * math.sqrt(r_eff)}
+                self.stiffness[(i.id1, i.id2)] = {
+                    "partner": b["name"] if a["name"] == self.spec["record_body"] else a["name"],
+                    "yade": got, "asperity": want,
+                    "rel_diff": max(abs(got[k] - want[k]) / abs(want[k]) for k in want if want[k] != 0)
+                    if any(want.values()) else 0.0}
 
     def step(self):
-        f = O.forces.f(self.rec, sync=True)
-        best_s, best_rate = -1e300, 0.0
-        if self.rec_radius is not None:
-            for b, bid in self.others:
-                s, rate = self.gap_rate(b, bid)
-                if s > best_s:
-                    best_s, best_rate = s, rate
+        fx = fy = fz = 0.0
+        for rid in self.rec_ids:
+            f = O.forces.f(rid, sync=True)
+            fx, fy, fz = fx + f[0], fy + f[1], fz + f[2]
+        cols = [O.time, fx, fy, fz]
+        for bid in self.free:
+            st = O.bodies[bid].state
+            cols += [st.pos[0], st.pos[1], st.pos[2], st.vel[0], st.vel[1], st.vel[2]]
         self.check_stiffness()
-        self.out.write(f"{O.time!r},{f[0]!r},{f[1]!r},{f[2]!r},{best_s!r},{best_rate!r}\n")
+        self.out.write(",".join(repr(c) for c in cols) + "\n")
 
 
 def main():
@@ -301,7 +283,8 @@ def main():
     rec = build(spec, record=True)
     globals()["RECORDER"] = rec
     with open(os.path.join(out, "raw.csv.partial"), "w") as fh:
-        fh.write("t,fx,fy,fz,s,rate\n")
+        names = [b["name"] for b in spec["bodies"] if b["shape"]["type"] == "sphere" and not b["fixed"]]
+        fh.write("t,fx,fy,fz" + "".join(f",{b}.x,{b}.y,{b}.z,{b}.vx,{b}.vy,{b}.vz" for b in names) + "\n")
         rec.out = fh
         O.run(steps + 1, True)
     os.replace(os.path.join(out, "raw.csv.partial"), os.path.join(out, "raw.csv"))

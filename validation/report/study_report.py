@@ -411,7 +411,8 @@ def yade_section(out, yade_dir, doc):
         cells = [j.get("scene") or os.path.basename(os.path.dirname(f))]
         for key in ("peak_force", "impulse", "contact_duration"):
             e = j.get(key) if isinstance(j.get(key), dict) else {}
-            cells += [fmt(e.get("asperity")), fmt(e.get("yade")), pct(e.get("rel_diff", e.get("relative_difference")))]
+            d = e.get("rel_diff", e.get("relative_difference"))
+            cells += [fmt(e.get("asperity")), fmt(e.get("yade")), pct(d.get("yade") if isinstance(d, dict) else d)]
         rows.append(cells)
     header = ["scene"] + [f"{k} {w}" for k in ("peak_force", "impulse", "contact_duration")
                           for w in ("asperity", "YADE", "diff")]

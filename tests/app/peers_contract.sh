@@ -1,0 +1,81 @@
+#!/usr/bin/env bash
+# The peer adapters and the external-solver gate through the program's contract (issue 14):
+# exit 2 for usage (unknown or uninstalled peer, a scene a peer cannot express, a --solver-cmd
+# without {scene} and {out}) with nothing written, exit 1 for a peer or solver that fails, JUnit
+# with readable messages, and the example solver: exact passes the Hertz cases, x1.05 fails them.
+# Needs the Debian packages yade, lammps and liggghts (deps/debian-packages.txt).
+set -u
+bin=$1
+src=$(cd "$2" && pwd)
+work=$(mktemp -d)
+trap 'rm -rf "$work"' EXIT
+passed=0
+failed=0
+check() {  # check NAME CONDITION...
+  local name=$1; shift
+  if "$@"; then passed=$((passed + 1)); else failed=$((failed + 1)); echo "FAIL: $name"; fi
+}
+lines() { wc -l < "$1"; }
+plane=$src/validation/cases/record/record-on-plane-normal.json
+box=$src/validation/cases/record/record-on-box-oblique.json
+mesh=$src/validation/cases/stability/stability-rigid-particle-block.json
+solver="python3 $src/validation/peers/example_solver/hertz_solver.py"
+
+# Usage errors: exit 2, one line naming the peer and the reason, nothing written.
+"$bin" crosscheck "$plane" --out "$work/u1" --peer nosuch 2> "$work/u1.err"
+check "unknown peer exits 2" test $? -eq 2
+check "unknown peer: one line naming the known ones" grep -q "nosuch: unknown peer (known: yade, lammps, liggghts)" "$work/u1.err"
+check "unknown peer: nothing written" test ! -e "$work/u1"
+"$bin" crosscheck "$plane" --out "$work/u2" --peer lammps --lammps /nonexistent/lmp 2> "$work/u2.err"
+check "uninstalled peer exits 2" test $? -eq 2
+check "uninstalled peer names its package" grep -q "lammps: not installed .*Debian package lammps" "$work/u2.err"
+check "uninstalled peer: nothing written" test ! -e "$work/u2"
+"$bin" crosscheck "$mesh" --out "$work/u3" --peer lammps 2> "$work/u3.err"
+check "mesh body for lammps exits 2" test $? -eq 2
+check "mesh body: names file, body and reason" grep -q "stability-rigid-particle-block.json: bodies\[0\] .*shape: lammps: a mesh body has no counterpart" "$work/u3.err"
+check "mesh body: one line" test "$(lines "$work/u3.err")" -eq 1
+check "mesh body: nothing written" test ! -e "$work/u3"
+"$bin" crosscheck "$box" --out "$work/u4" --peer yade,liggghts 2> "$work/u4.err"
+check "box for liggghts exits 2 before yade runs" test $? -eq 2
+check "box: nothing written" test ! -e "$work/u4"
+"$bin" validate "$src/validation/cases/hertz" --out "$work/u5" --solver-cmd "$solver" 2> "$work/u5.err"
+check "--solver-cmd without {scene} {out} exits 2" test $? -eq 2
+check "--solver-cmd: nothing written" test ! -e "$work/u5"
+"$bin" validate "$mesh" --out "$work/u6" --solver lammps 2> "$work/u6.err"
+check "a sweep for --solver exits 2" test $? -eq 2
+
+# A peer that runs and fails is a tool failure: exit 1, its reason on one line.
+"$bin" crosscheck "$plane" --out "$work/f1" --yade /bin/false 2> "$work/f1.err"
+check "--yade /bin/false exits 1" test $? -eq 1
+check "--yade /bin/false: one line" test "$(lines "$work/f1.err")" -eq 1
+check "--yade /bin/false: yade failed" grep -q "yade failed (exit 1)" "$work/f1.err"
+
+# Force recorded on the plane: all three peers agree with asperity; JUnit per peer and quantity.
+"$bin" crosscheck "$plane" --out "$work/c1" --peer yade,lammps,liggghts --max-rel-diff 1e-6 \
+  --junit "$work/c1.xml" --quiet
+check "plane-recorded cross-check with three peers exits 0" test $? -eq 0
+check "three peer folders" test -s "$work/c1/yade/summary.json" -a -s "$work/c1/lammps/force.csv" -a -s "$work/c1/liggghts/summary.json"
+check "JUnit: 12 testcases, no failure" grep -q 'tests="12" failures="0" errors="0"' "$work/c1.xml"
+
+# The example external solver: exact passes the 24 Hertz cases, x1.05 fails them readably.
+"$bin" validate "$src/validation/cases/hertz" --out "$work/s1" -q --junit "$work/s1.xml" \
+  --solver-cmd "$solver {scene} {out}"
+check "exact example solver passes the Hertz cases" test $? -eq 0
+check "JUnit: no failure" grep -q 'failures="0" errors="0"' "$work/s1.xml"
+"$bin" validate "$src/validation/cases/hertz" --out "$work/s2" -q --junit "$work/s2.xml" \
+  --solver-cmd "$solver {scene} {out} --force-scale 1.05"
+check "x1.05 example solver fails" test $? -eq 1
+check "JUnit: 24 peak-force failures" test "$(grep -c '<testcase classname="[^"]*" name="peak_force"[^/]*>' "$work/s2.xml")" -eq 24
+check "JUnit: readable message" grep -q 'failure message="peak_force: got [0-9.e+-]*, expected [0-9.e+-]* (hertz), rel error 0.019[0-9]*, tolerance 0.005 rel"' "$work/s2.xml"
+
+# A solver that fails, or writes no summary.json: the case fails (JUnit <error>), exit 1.
+"$bin" validate "$plane" --out "$work/s3" -q --junit "$work/s3.xml" --solver-cmd "false {scene} {out}" 2> "$work/s3.err"
+check "failing solver exits 1" test $? -eq 1
+check "failing solver: one line" grep -q "solver-cmd: exited 1 on record-on-plane-normal" "$work/s3.err"
+check "failing solver: JUnit error" grep -q '<error message="--solver-cmd: exited 1' "$work/s3.xml"
+"$bin" validate "$plane" --out "$work/s4" -q --solver-cmd "true {scene} {out}" 2> "$work/s4.err"
+check "silent solver exits 1" test $? -eq 1
+check "silent solver: no summary.json named" grep -q "wrote no summary.json for record-on-plane-normal" "$work/s4.err"
+
+echo "$passed passed, $failed failed"
+test "$failed" -eq 0
