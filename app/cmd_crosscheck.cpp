@@ -68,8 +68,7 @@ void add_crosscheck_command(CLI::App& app, Action& action) {
       if (yade_only && has_mesh_body(args->o.scene_file)) {
         return yade_polyhedra_crosscheck(args->o.scene_file, args->o.out,
                                          args->yade.empty() ? "yade" : args->yade,
-                                         ASPERITY_YADE_SCRIPT, args->o.max_rel_diff,
-                                         args->o.quiet);
+                                         ASPERITY_YADE_SCRIPT, args->o.max_rel_diff, args->o.quiet);
       }
       peers::CrosscheckOptions o = args->o;
       if (!args->peers.empty()) o.peers = args->peers;

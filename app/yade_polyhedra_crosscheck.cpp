@@ -20,8 +20,8 @@
 #include <sstream>
 
 #include "app/cli_numbers.hpp"
-#include "app/yade_polyhedra_crosscheck.hpp"
 #include "app/out_folder.hpp"
+#include "app/yade_polyhedra_crosscheck.hpp"
 #include "contact/restitution_damping.hpp"
 #include "core/error.hpp"
 #include "io/json_file.hpp"
@@ -315,8 +315,9 @@ Json compare(const Json& a, const Json& y, const std::string& key) {
 
 }  // namespace
 
-int yade_polyhedra_crosscheck(const fs::path& scene_file, const fs::path& out, const std::string& yade,
-                   const fs::path& script, std::optional<double> max_rel_diff, bool quiet) {
+int yade_polyhedra_crosscheck(const fs::path& scene_file, const fs::path& out,
+                              const std::string& yade, const fs::path& script,
+                              std::optional<double> max_rel_diff, bool quiet) {
   const scene::SceneDef s = load_scene_or_case(scene_file);
   check_out_folder(out);
   const fs::path exe = find_executable(yade);
