@@ -103,6 +103,28 @@ while time.time() < deadline and len(glob.glob(os.path.join(out, "cases", "*", "
     time.sleep(0.05)
 os.killpg(p.pid, signal.SIGKILL)
 p.wait()
+# mpirun may have put its ranks in process groups of their own (Open MPI does, on some machines):
+# they outlive the kill of mpirun's group and hold the folder's lock. Kill every process still
+# working in this folder and wait until none is left, as a user who pressed Ctrl-C twice would.
+def working_here():
+    pids = []
+    for pid in filter(str.isdigit, os.listdir("/proc")):
+        try:
+            with open(f"/proc/{pid}/cmdline", "rb") as f:
+                if out.encode() in f.read():
+                    pids.append(int(pid))
+        except OSError:
+            pass
+    return pids
+deadline = time.time() + 60
+while working_here() and time.time() < deadline:
+    for pid in working_here():
+        try:
+            os.kill(pid, signal.SIGKILL)
+        except OSError:
+            pass
+    time.sleep(0.1)
+check("the killed launch's ranks are gone", not working_here(), working_here())
 finished = len(glob.glob(os.path.join(out, "cases", "*", "*", "case.json")))
 check("the killed launch had finished some cases, not all", 0 < finished < n_cases, finished)
 r = study(out, "-j", "1", ranks=3)
