@@ -5,9 +5,10 @@
 #   law "volume-linear", kv (N/m³), gravity, dt, steps, record_body, materials, and bodies, each
 #   {name, material, fixed, vertices (world frame, m), velocity, angular_velocity}
 # (planes and boxes arrive as the vertices of the slab or box asperity collides with), and writes
-# the files scene_to_yade.py documents: OUTDIR/raw.csv (t,fx,fy,fz,s,rate per step) and
-# OUTDIR/raw.json (final motions, CPU seconds of a run without the recorder, the stiffness YADE
-# used, the wall time of each kind of step).
+# the files the YADE adapter (validation/peers/yade.cpp) reads: OUTDIR/raw.csv (per step
+# t,fx,fy,fz,s,nx,ny,nz, then x,y,z,vx,vy,vz of each free body in scene order) and OUTDIR/raw.json
+# (final motions, CPU seconds of a run without the recorder, the stiffness YADE used, the wall time
+# of each kind of step).
 #
 # The mapping (docs/crosscheck.md):
 #   body       -> yade.polyhedra_utils.polyhedra(material, v=vertices): YADE takes the convex hull
@@ -18,7 +19,8 @@
 #                 kn = 1/(1/young₁ + 1/young₂), so every PolyhedraMat gets young = 2 kv and
 #                 kn = kv; frictionAngle 0 (asperity's volume laws are frictionless).
 #   s (overlap) -> PolyhedraGeom.penetrationVolume / equivalentCrossSection: asperity's recorded
-#                 depth V/|S|; -1e300 while apart, as asperity records it.
+#                 depth V/|S|; -1e300 while apart, as asperity records it; n its normal, into the
+#                 recorded body (the restitution's direction).
 import json
 import os
 import sys
@@ -72,15 +74,11 @@ def contacts_of(rid):
     return [i for i in O.interactions.withBody(rid) if i.isReal]
 
 
-LAST = {}  # the latest contact's partner and normal: the rebound is measured along it
-
-
-def record_row(rid):
+def record_row(rid, free):
     """t, force on the recorded body, its overlap's mean depth V/A (A YADE's cross-section) and
-    the approach speed along the contact normal (the last contact's while apart, so that the
-    separation speed is read where the contact ends)."""
+    normal (into the recorded body), then each free body's position and velocity."""
     f = O.forces.f(rid)
-    s = -1e300
+    s, n_best = -1e300, Vector3(0, 0, 1)
     for i in contacts_of(rid):
         g = i.geom
         if g.penetrationVolume <= 0:
@@ -92,19 +90,18 @@ def record_row(rid):
             n = -n
         depth = g.penetrationVolume / g.equivalentCrossSection if g.equivalentCrossSection > 0 else 0
         if depth > s:
-            s = depth
-            LAST.update(other=other, n=n)
-    rate = 0.0
-    if LAST:
-        v = O.bodies[rid].state.vel - O.bodies[LAST["other"]].state.vel
-        rate = -v.dot(LAST["n"])
-    return [O.time, f[0], f[1], f[2], s, rate]
+            s, n_best = depth, n
+    row = [O.time, f[0], f[1], f[2], s, n_best[0], n_best[1], n_best[2]]
+    for bid in free:
+        st = O.bodies[bid].state
+        row += [st.pos[0], st.pos[1], st.pos[2], st.vel[0], st.vel[1], st.vel[2]]
+    return row
 
 
 def run(spec, outdir):
-    LAST.clear()
     ids = build(spec)
     rid = ids[spec["record_body"]]
+    free = [ids[b["name"]] for b in spec["bodies"] if not b["fixed"]]
     steps = int(spec["steps"])
     rows = []
     stiffness = []
@@ -113,7 +110,7 @@ def run(spec, outdir):
     # so its row is dated at the start (O.time − dt): rows at t = 0 … steps·dt, as asperity's.
     for _ in range(steps + 1):
         O.step()
-        rows.append(record_row(rid))
+        rows.append(record_row(rid, free))
         rows[-1][0] = O.time - O.dt
         in_contact.append(rows[-1][4] > -1e299)
         for i in contacts_of(rid):
@@ -147,7 +144,9 @@ def run(spec, outdir):
         "max": max(step_wall) if step_wall else None,
     }
     with open(os.path.join(outdir, "raw.csv.partial"), "w") as out:
-        out.write("t,fx,fy,fz,s,rate\n")
+        names = [b["name"] for b in spec["bodies"] if not b["fixed"]]
+        out.write("t,fx,fy,fz,s,nx,ny,nz" +
+                  "".join(f",{b}.x,{b}.y,{b}.z,{b}.vx,{b}.vy,{b}.vz" for b in names) + "\n")
         for r in rows:
             out.write(",".join(repr(float(x)) for x in r) + "\n")
     os.replace(os.path.join(outdir, "raw.csv.partial"), os.path.join(outdir, "raw.csv"))

@@ -45,7 +45,11 @@ double convexity_defect(const Eigen::Matrix3Xd& nodes, const Eigen::Matrix3Xi& s
 Json yade_polyhedra_input(const scene::SceneDef& s, double dt, long steps) {
   const std::string where = s.file.string() + ": ";
   if (s.contact.law != scene::ContactLaw::volume_linear) {
-    throw InputError(where + "contact.law: the YADE polyhedra path runs \"volume-linear\" only");
+    throw InputError(where +
+                     "contact.law: yade: rigid polyhedra cross-check under \"volume-linear\" "
+                     "only (YADE's volumetric law, with a kv); \"" +
+                     std::string(scene::contact_law_name(s.contact.law)) +
+                     "\" has no YADE counterpart");
   }
   const std::vector<TetMesh> meshes = run::collision_meshes(s);
   Json j;
