@@ -119,7 +119,7 @@ bad "validate on a scene" "good.json: this is a scene, not a validation case.*as
 bad "unknown command" "unknown command \"bogus\"" bogus
 
 # --- 10. The volume laws of rigid polyhedra (issue 13): volume-linear without kv or with kv <= 0 in
-# run and crosscheck; a non-convex body and volume-hertz to the YADE cross-check (YADE's Polyhedra
+# run and crosscheck; friction without its tangential stiffness kt; a non-convex body and volume-hertz to the YADE cross-check (YADE's Polyhedra
 # is the convex hull of its vertices; volume-hertz has no YADE law).
 poly_case=$src/validation/cases/polyhedra/volume-linear-cube-face-straight.json
 /usr/bin/python3 -c "
@@ -146,6 +146,9 @@ for kv in 0 -1e11; do
   bad "kv = $kv, crosscheck" "kv$kv.json: contact\.kv: .*(positive|> 0)" \
     crosscheck "$in/kv$kv.json" --out "$out/c"
 done
+poly_variant nokt "s['contact']['friction'] = 0.3"
+bad "volume-law friction without kt" "nokt.json: contact\.kt: the volume laws' friction \(contact\.friction 0\.3\) needs kt" \
+  run "$in/nokt.json" --out "$out/r"
 poly_variant concave "s['bodies'][0]['shape']['file'] = '$src/data/meshes/particle-seed3-320.off'"
 bad "non-convex body to YADE" "concave.json: bodies\[0\] \"particle\": shape: not convex" \
   crosscheck "$in/concave.json" --out "$out/c"

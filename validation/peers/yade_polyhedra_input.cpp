@@ -2,6 +2,7 @@
 // yade_polyhedra_input.hpp).
 #include "peers/yade_polyhedra_input.hpp"
 
+#include <algorithm>
 #include <set>
 #include <sstream>
 
@@ -56,6 +57,16 @@ Json yade_polyhedra_input(const scene::SceneDef& s, double dt, long steps) {
   j["scene"] = s.name;
   j["law"] = "volume-linear";
   j["kv"] = *s.contact.kv;
+  // Coulomb friction (the volume laws' tangential spring kt and μ, run/run_fdem.cpp): the pair's μ
+  // is the scene's, else the smallest of the bodies' materials'.
+  double mu = s.contact.friction.value_or(1e300);
+  if (!s.contact.friction) {
+    for (const scene::BodyDef& b : s.bodies) mu = std::min(mu, s.materials[b.material].friction);
+  }
+  if (mu > 0 && mu < 1e300) {
+    j["friction"] = mu;
+    j["kt"] = s.contact.kt.value_or(0.0);
+  }
   j["materials"] = Json::object();
   for (const Material& m : s.materials) {
     j["materials"][m.name] = {{"density", m.density}, {"young", m.young}, {"poisson", m.poisson}};
