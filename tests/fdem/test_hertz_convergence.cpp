@@ -80,11 +80,11 @@ Rate richardson(double e1, double e2, double e3, double r) {
   return {.order = p, .finest_error = (e2 - e3) / (q - 1)};
 }
 
-// Label `slow`: three levels, about 2 min of run CPU on one idle core (budget 3 min).
+// Label `slow`: three levels, 154 s of run CPU on the loaded machine (budget 3 min).
 // Measured (reports/fem/hertz_convergence.md) at s = 2, √2, 1: peak +7.4, +6.5, +5.9 %,
-// duration −6.6, −4.8, −4.1 %; observed order 1.2 (peak) and 2.5 (duration), the finest level
-// 1.2 % (peak) and 0.5 % (duration) from the extrapolated limit. The solver converges; the limit
-// it converges to is stiffer than Hertz by +4.6 % in peak (−3.6 % duration) at a/R = 0.107, a
+// duration −6.6, −4.8, −4.1 %; observed order 1.3 (peak) and 2.6 (duration), the finest level
+// 1.1 % (peak) and 0.5 % (duration) from the extrapolated limit. The solver converges; the limit
+// it converges to is stiffer than Hertz by +4.8 % in peak (−3.6 % duration) at a/R = 0.107, a
 // deviation that grows with the contact size (a/R = 0.15 on the finest mesh: +7.4 %) and is the
 // same with small-strain linear elasticity (+6.3 %, +7.8 %): the finite sphere, not the
 // half-space of Hertz's theory (docs/physics.md). So this test gates the convergence (falling
@@ -110,11 +110,11 @@ TEST(HertzConvergence, WholeFieldRefinementConverges) {
       l[2].err_force - peak.finest_error, l[2].err_duration - dur.finest_error);
   // Linear tetrahedra converge at first order or better in the contact compliance (energy error
   // O(h²) for smooth fields, reduced by the pressure's square-root edge at r = a): an order
-  // below 0.75 (measured 1.2 peak, 2.5 duration) means the levels have stopped converging.
+  // below 0.75 (measured 1.26 peak, 2.60 duration) means the levels have stopped converging.
   EXPECT_GT(peak.order, 0.75);
   EXPECT_GT(dur.order, 0.75);
   // The 2 %, applied to what the solver controls: the finest level's own
-  // discretization error (measured 1.2 % peak, 0.5 % duration).
+  // discretization error (measured 1.1 % peak, 0.5 % duration).
   EXPECT_LT(std::abs(peak.finest_error), 0.02);
   EXPECT_LT(std::abs(dur.finest_error), 0.02);
 }
