@@ -45,18 +45,22 @@ inline SurfaceMesh sphere_surface(double r = kRadius) {
   return s;
 }
 
-// Element size h at the strike point, growing at kGrowth beyond 2 contact radii up to 25 mm
-// (graded), or h everywhere the geometry allows (uniform: growth 0).
-inline geometry::ElementSize element_size(double h, bool graded, double r = kRadius) {
+// Element size h at the strike point, constant within 2 contact radii of it, growing at
+// `growth` beyond up to `far` (graded), or h everywhere the geometry allows (uniform: growth 0).
+// The whole-field refinement of the convergence gate scales all three together (s·h, s·growth,
+// s·far), so every element shrinks by s: the interior far from the contact carries a quarter of
+// the sphere's compliance (a point load's displacement falls as 1/r) and must refine too.
+inline geometry::ElementSize element_size(double h, bool graded, double r = kRadius,
+                                          double growth = kGrowth, double far = 0.025) {
   if (!graded) return {.size = h};
-  return {
-      .size = h, .focus = Vec3(0, 0, -r), .focus_radius = 0.02, .growth = kGrowth, .far = 0.025};
+  return {.size = h, .focus = Vec3(0, 0, -r), .focus_radius = 0.02, .growth = growth, .far = far};
 }
 
-inline TetMesh sphere_mesh(double h, bool graded, double radius_edge_ratio = 1.5) {
+inline TetMesh sphere_mesh(double h, bool graded, double radius_edge_ratio = 1.5,
+                           double growth = kGrowth, double far = 0.025) {
   geometry::TetOptions o;
   o.radius_edge_ratio = radius_edge_ratio;
-  o.element_size = element_size(h, graded);
+  o.element_size = element_size(h, graded, kRadius, growth, far);
   return geometry::tetrahedralize(sphere_surface(), o);
 }
 
@@ -83,13 +87,14 @@ inline scenes::Hertz hertz_impact(double m_star, double r_star, double e_star, d
 }
 
 // The meshed sphere `ball` (strike point at (0, 0, −R)) just above a fixed block, moving down.
-inline WorldDef sphere_on_block(const TetMesh& ball, const Material& m, double alpha = 10) {
+inline WorldDef sphere_on_block(const TetMesh& ball, const Material& m, double alpha = 10,
+                                double speed = kSpeed) {
   WorldDef def;
   def.bodies.push_back({.name = "ball",
                         .kind = BodyKind::deformable,
                         .mesh = scenes::translated(ball, Vec3(0, 0, kRadius + 2e-4)),
                         .material = m,
-                        .velocity = Vec3(0, 0, -kSpeed)});
+                        .velocity = Vec3(0, 0, -speed)});
   def.bodies.push_back({.name = "block",
                         .kind = BodyKind::fixed,
                         .mesh = box_mesh(Vec3(-2 * kRadius, -2 * kRadius, -kRadius),
@@ -98,9 +103,10 @@ inline WorldDef sphere_on_block(const TetMesh& ball, const Material& m, double a
   def.contact.alpha = alpha;
   return def;
 }
-inline scenes::Hertz sphere_on_block_hertz(const TetMesh& ball, const Material& m) {
+inline scenes::Hertz sphere_on_block_hertz(const TetMesh& ball, const Material& m,
+                                           double speed = kSpeed) {
   return hertz_impact(m.density * mesh_volume(ball), kRadius, m.young / (1 - m.poisson * m.poisson),
-                      kSpeed);
+                      speed);
 }
 
 }  // namespace asperity::fdem::hertz
