@@ -60,12 +60,16 @@ void add_crosscheck_command(CLI::App& app, Action& action) {
   cc->add_flag("--only-expressible", args->o.only_expressible,
                "Run only the peers that can express the scene; list the others with their reason "
                "in comparison.json (\"not_run\") instead of exit 2");
+  cc->add_flag(
+      "--cost-only", args->o.cost_only,
+      "Cost only: each code's plain run (no per-step recorder or dump), timed; writes "
+      "DIR/cost.json (loop and whole-run CPU and wall seconds per code), compares nothing");
   cc->add_flag("-q,--quiet", args->o.quiet, "No summary lines on stderr");
   cc->callback([args, &action] {
     action = [args] {
       const bool yade_only =
           args->peers.empty() || (args->peers.size() == 1 && args->peers[0] == "yade");
-      if (yade_only && has_mesh_body(args->o.scene_file)) {
+      if (yade_only && !args->o.cost_only && has_mesh_body(args->o.scene_file)) {
         return yade_polyhedra_crosscheck(args->o.scene_file, args->o.out,
                                          args->yade.empty() ? "yade" : args->yade,
                                          ASPERITY_YADE_SCRIPT, args->o.max_rel_diff, args->o.quiet);

@@ -103,12 +103,14 @@ Json yade_input(const scene::SceneDef& s, const Resolved& r) {
   return j;
 }
 
-PeerTrace run(const scene::SceneDef& s, const Resolved& r, const fs::path& exe,
-              const fs::path& dir) {
+PeerTrace run(const scene::SceneDef& s, const Resolved& r, const fs::path& exe, const fs::path& dir,
+              RunMode mode) {
   const fs::path script = ASPERITY_YADE_SCRIPT;
   if (!fs::is_regular_file(script))
     throw PeerFailure("yade: " + script.string() + ": translator script not found");
-  write_file(dir / "input.json", yade_input(s, r).dump(2) + "\n");
+  Json in = yade_input(s, r);
+  in["cost_only"] = mode == RunMode::cost;
+  write_file(dir / "input.json", in.dump(2) + "\n");
   const std::string cmd = shell_quote(exe.string()) + " -n -x " + shell_quote(script.string()) +
                           " " + shell_quote((dir / "input.json").string()) + " " +
                           shell_quote(dir.string()) + " > " +
@@ -122,9 +124,16 @@ PeerTrace run(const scene::SceneDef& s, const Resolved& r, const fs::path& exe,
     throw PeerFailure("yade failed (exit " + std::to_string(code) + "): " + why +
                       " [log: " + (dir / "yade.log").string() + "]");
   }
+  const Json raw = Json::parse(std::ifstream(dir / "raw.json"));
+  if (mode == RunMode::cost) {
+    PeerTrace tr;
+    tr.cpu_seconds = raw.at("cpu_seconds").get<double>();
+    tr.wall_seconds = raw.at("wall_seconds").get<double>();
+    tr.version = raw.value("yade_version", "");
+    return tr;
+  }
   const std::vector<int> spheres = free_spheres(s);
   PeerTrace tr = read_trace_csv(dir / "raw.csv", static_cast<int>(spheres.size()), "yade");
-  const Json raw = Json::parse(std::ifstream(dir / "raw.json"));
   for (int b : spheres) {
     const auto& w = raw.at("final").at(s.bodies[b].name).at("angular_velocity");
     tr.final_w.emplace_back(w[0].get<double>(), w[1].get<double>(), w[2].get<double>());
