@@ -129,19 +129,25 @@ int cost_only(const CrosscheckOptions& o, const scene::SceneDef& s, const run::R
       cost_entry(loop_cpu, loop_cpu, a.summary.at("wall_seconds").get<double>(), run_cpu, run_wall,
                  resolved.steps, particles, "asperity 0.1.0",
                  "asperity's time loop (its per-step recording of the recorded body included)");
+  c["codes"]["asperity"]["step_cpu_from"] = "asperity's time-loop thread CPU";
   std::vector<std::string> failed;
   for (const Planned& p : plan) {
-    // Each code's own loop clock is not one definition (LIGGGHTS prints wall time only), so a
-    // peer's steps cost its process's CPU at the scene's step count less its CPU at 0 steps
-    // (the same process: start, input, set-up, exit; into DIR/setup/PEER/).
+    // The steps' CPU: the peer's own CPU clock of its loop (YADE: process_time around O.run;
+    // LAMMPS: loop time × its CPU use), else (LIGGGHTS prints its loop's wall time only) its
+    // process CPU at the scene's step count less the same process at 0 steps (start, input,
+    // set-up, exit; into DIR/setup/PEER/), which every peer also gets as a cross-check.
     try {
       const fs::path dir = o.out / p.adapter->name;
       const ProcessRun setup =
           timed_run(p, s, {.dt = resolved.dt, .steps = 0}, o.out / "setup" / p.adapter->name);
       const ProcessRun full = timed_run(p, s, resolved, dir);
-      Json e = cost_entry(full.cpu - setup.cpu, full.trace.cpu_seconds, full.trace.wall_seconds,
-                          full.cpu, full.wall, resolved.steps, particles, full.trace.version,
-                          p.adapter->cpu_note);
+      const double by_process = full.cpu - setup.cpu;
+      Json e = cost_entry(full.trace.cpu_measured ? full.trace.cpu_seconds : by_process,
+                          full.trace.cpu_seconds, full.trace.wall_seconds, full.cpu, full.wall,
+                          resolved.steps, particles, full.trace.version, p.adapter->cpu_note);
+      e["step_cpu_from"] =
+          full.trace.cpu_measured ? "the peer's loop CPU clock" : "process CPU less a 0-step run";
+      e["process_step_cpu_seconds"] = by_process;
       e["setup_cpu_seconds"] = setup.cpu;
       c["codes"][p.adapter->name] = e;
     } catch (const PeerFailure& e) {

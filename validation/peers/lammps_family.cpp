@@ -240,23 +240,25 @@ PeerTrace read_dump(const fs::path& file, int atoms, double dt,
   return tr;
 }
 
-// CPU seconds of the last `run` in a log: "Loop time of T on 1 procs" times its "% CPU use" when
-// printed. Throws PeerFailure when absent.
-double loop_cpu_seconds(const fs::path& log, double* wall, const std::string& peer) {
+// The last `run` of a log into tr: its wall seconds ("Loop time of T on 1 procs") and CPU seconds
+// (T times its "% CPU use"; LIGGGHTS 3.8 prints no such line: cpu_measured false, CPU = T). Throws
+// PeerFailure when there is no loop time.
+void read_loop_time(const fs::path& log, PeerTrace& tr, const std::string& peer) {
   std::ifstream in(log);
-  double loop = -1, cpu_use = 100;
+  double loop = -1, cpu_use = -1;
   for (std::string line; std::getline(in, line);) {
     double t = 0;
     if (std::sscanf(line.c_str(), "Loop time of %lf", &t) == 1) {
       loop = t;
-      cpu_use = 100;
+      cpu_use = -1;
     }
     double pct = 0;
     if (std::sscanf(line.c_str(), "%lf%% CPU use", &pct) == 1) cpu_use = pct;
   }
   if (loop < 0) throw PeerFailure(peer + ": " + log.string() + ": no \"Loop time\" line");
-  if (wall) *wall = loop;
-  return loop * cpu_use / 100;
+  tr.wall_seconds = loop;
+  tr.cpu_measured = cpu_use >= 0;
+  tr.cpu_seconds = tr.cpu_measured ? loop * cpu_use / 100 : loop;
 }
 
 // The version line of a log (its first line).
@@ -351,7 +353,7 @@ PeerTrace run(const Dialect& d, const scene::SceneDef& s, const Resolved& r, con
     };
     tr = read_dump(dir / "trace.dump", static_cast<int>(types.spheres.size()), r.dt, force, d.peer);
   }
-  tr.cpu_seconds = loop_cpu_seconds(dir / "timing.log", &tr.wall_seconds, d.peer);
+  read_loop_time(dir / "timing.log", tr, d.peer);
   tr.version = log_version(dir / "timing.log");
   return tr;
 }

@@ -50,7 +50,8 @@ struct PeerTrace {
   std::vector<Vec3> final_w;            // rad/s, each free sphere's at the end
   double cpu_seconds = 0;               // the peer's engine loop alone, no recorder
   double wall_seconds = 0;
-  std::string version;                                              // the peer's own version string
+  bool cpu_measured = true;  // false: the peer gives its loop's wall time only (cpu_seconds is it)
+  std::string version;       // the peer's own version string
   nlohmann::ordered_json extra = nlohmann::ordered_json::object();  // e.g. YADE's stiffness
 };
 

@@ -1,14 +1,17 @@
 #!/usr/bin/env python3
 """The peer table: every sphere case in asperity and in each peer, side by side.
 
-    peer_table.py ASPERITY_EXE OUT_DIR [--peers yade,lammps,liggghts] [CASES...]
+    peer_table.py ASPERITY_EXE OUT_DIR [--peers yade,lammps,liggghts] [--yade-table DIR] [CASES...]
 
 Runs `asperity crosscheck CASE --peer P1,P2,... --only-expressible` once per case whose bodies
 are rigid spheres, planes and boxes (default: validation/cases), so every code's CPU time is for
 the same scene and step and measured in one run on one machine, then writes OUT_DIR/peers.csv
 (one row per case and peer) and OUT_DIR/peers.md: per case and peer the relative differences
 (asperity − peer)/peer of peak force, impulse, contact duration and restitution, both CPU times
-and their ratio, and for a peer that cannot express the case, its reason.
+and their ratio, and for a peer that cannot express the case, its reason. With --yade-table DIR
+it also writes the YADE rows alone as DIR/crosscheck.csv and .md (reports/yade/, which the study
+report reads). The cost per step on a two-sphere scene and a 10,000-sphere bed is
+peer_cost.py's (OUT_DIR/cost.md); the `peers-report` target runs both.
 """
 import csv
 import json
@@ -44,6 +47,11 @@ def main(argv):
     if "--peers" in rest:
         i = rest.index("--peers")
         peers = rest[i + 1].split(",")
+        rest = rest[:i] + rest[i + 2:]
+    yade_table = None
+    if "--yade-table" in rest:
+        i = rest.index("--yade-table")
+        yade_table = pathlib.Path(rest[i + 1])
         rest = rest[:i] + rest[i + 2:]
     targets = [pathlib.Path(p) for p in rest] or [ROOT / "validation" / "cases"]
     files = []
@@ -127,9 +135,53 @@ def main(argv):
                      f"{fmt(r['ratio_asperity_over_peer'], '.3f')} |")
     for name, code, err in failed:
         lines.append(f"| {name} | failed (exit {code}) | {err} | | | | | | | | | |")
+    lines += ["", "Cost per step on a two-sphere scene and a 10,000-sphere bed: [cost.md](cost.md) "
+              "(validation/report/peer_cost.py)."]
     (out / "peers.md").write_text("\n".join(lines) + "\n")
+    if yade_table and "yade" in peers:
+        write_yade_table(yade_table, [r for r in rows if r["peer"] == "yade" and r["status"] != "not run"])
     print(f"{len(files)} cases -> {out / 'peers.md'}", file=sys.stderr)
     return 1 if failed else 0
+
+
+def write_yade_table(out, rows):
+    """The YADE rows alone, in the columns of the earlier YADE-only table (study_report.py reads
+    crosscheck.csv)."""
+    out.mkdir(parents=True, exist_ok=True)
+    fields = ["case", "law", "steps", "peak_force_rel_diff", "impulse_rel_diff", "contact_duration_rel_diff",
+              "cpu_asperity_s", "cpu_yade_s", "ratio"]
+    table = [{"case": r["case"], "law": r["law"], "steps": r["steps"],
+              "peak_force_rel_diff": r["peak_force_rel_diff"], "impulse_rel_diff": r["impulse_rel_diff"],
+              "contact_duration_rel_diff": r["contact_duration_rel_diff"], "cpu_asperity_s": r["cpu_asperity_s"],
+              "cpu_yade_s": r["cpu_peer_s"], "ratio": r["ratio_asperity_over_peer"]} for r in rows]
+    with open(out / "crosscheck.csv", "w", newline="") as fh:
+        w = csv.DictWriter(fh, fieldnames=fields)
+        w.writeheader()
+        w.writerows(table)
+    ratios = [r["ratio"] for r in table if r["ratio"]]
+    cpu_a = sum(r["cpu_asperity_s"] or 0 for r in table)
+    cpu_y = sum(r["cpu_yade_s"] or 0 for r in table)
+    lines = ["# asperity against YADE: agreement and cost, case by case", "",
+             f"Machine: {platform.machine()}, {os.cpu_count()} CPUs, {platform.platform()}; both codes single-threaded, "
+             "same scene, same dt, same step count, run one after the other by `asperity crosscheck` "
+             "(validation/report/peer_table.py --yade-table, the YADE rows of reports/peers/peers.md). YADE's CPU time "
+             "is its engine loop alone (no Python in the loop); asperity's includes its per-step recording. Relative "
+             "differences are (asperity − YADE)/YADE. docs/crosscheck.md explains every systematic difference.", "",
+             f"{len(table)} cases cross-checked. CPU in all: asperity {cpu_a:.3f} s, YADE {cpu_y:.3f} s"
+             + (f" (ratio {cpu_a / cpu_y:.3f})" if cpu_y else "") + "."
+             + (f" Ratio asperity/YADE per case: median {statistics.median(ratios):.3f}, min {min(ratios):.3f}, "
+                f"max {max(ratios):.3f}." if ratios else ""), "",
+             "| case | law | steps | Δ peak force | Δ impulse | Δ duration | asperity CPU s | YADE CPU s | asperity/YADE |",
+             "|---|---|---|---|---|---|---|---|---|"]
+
+    def fmt(x, spec):
+        return "" if x is None or x == "" else format(x, spec)
+
+    for r in table:
+        lines.append(f"| {r['case']} | {r['law']} | {r['steps']} | {fmt(r['peak_force_rel_diff'], '.2e')} | "
+                     f"{fmt(r['impulse_rel_diff'], '.2e')} | {fmt(r['contact_duration_rel_diff'], '.2e')} | "
+                     f"{fmt(r['cpu_asperity_s'], '.5f')} | {fmt(r['cpu_yade_s'], '.5f')} | {fmt(r['ratio'], '.3f')} |")
+    (out / "crosscheck.md").write_text("\n".join(lines) + "\n")
 
 
 if __name__ == "__main__":
