@@ -137,7 +137,9 @@ Adapter liggghts_adapter() {
   return {.name = "liggghts",
           .program = "liggghts",
           .package = "liggghts",
-          .cpu_note = "LIGGGHTS's loop time (one process, one thread), a run without the dump",
+          .cpu_note =
+              "LIGGGHTS's loop time (one process, one thread), a run without the dump: "
+              "wall time, the only clock it prints",
           .check = check,
           .run = run};
 }

@@ -1,7 +1,8 @@
 #!/usr/bin/env python3
 """The peer table: every sphere case in asperity and in each peer, side by side.
 
-    peer_table.py ASPERITY_EXE OUT_DIR [--peers yade,lammps,liggghts] [--yade-table DIR] [CASES...]
+    peer_table.py ASPERITY_EXE OUT_DIR [--peers yade,lammps,liggghts] [--yade-table DIR] [--jobs N]
+                  [CASES...]
 
 Runs `asperity crosscheck CASE --peer P1,P2,... --only-expressible` once per case whose bodies
 are rigid spheres, planes and boxes (default: validation/cases), so every code's CPU time is for
@@ -13,6 +14,7 @@ it also writes the YADE rows alone as DIR/crosscheck.csv and .md (reports/yade/,
 report reads). The cost per step on a two-sphere scene and a 10,000-sphere bed is
 peer_cost.py's (OUT_DIR/cost.md); the `peers-report` target runs both.
 """
+import concurrent.futures
 import csv
 import json
 import os
@@ -48,6 +50,11 @@ def main(argv):
         i = rest.index("--peers")
         peers = rest[i + 1].split(",")
         rest = rest[:i] + rest[i + 2:]
+    jobs = 1
+    if "--jobs" in rest:
+        i = rest.index("--jobs")
+        jobs = int(rest[i + 1])
+        rest = rest[:i] + rest[i + 2:]
     yade_table = None
     if "--yade-table" in rest:
         i = rest.index("--yade-table")
@@ -59,11 +66,19 @@ def main(argv):
         files += sorted(t.rglob("*.json")) if t.is_dir() else [t]
     files = [f for f in files if sphere_case(f)]
     rows, failed = [], []
-    for k, f in enumerate(files):
+
+    def crosscheck(f):
+        run_dir = out / "runs" / json.loads(f.read_text())["case"]
+        return subprocess.run([exe, "crosscheck", str(f), "--out", str(run_dir), "--peer", ",".join(peers),
+                               "--only-expressible", "--quiet"], capture_output=True, text=True)
+
+    # Cases in parallel (--jobs): each case's codes still run one after the other, and the CPU
+    # times are CPU, not wall; the order of the table is the files' order.
+    with concurrent.futures.ThreadPoolExecutor(max_workers=jobs) as pool:
+        done = list(pool.map(crosscheck, files))
+    for k, (f, p) in enumerate(zip(files, done)):
         name = json.loads(f.read_text())["case"]
         run_dir = out / "runs" / name
-        p = subprocess.run([exe, "crosscheck", str(f), "--out", str(run_dir), "--peer", ",".join(peers),
-                            "--only-expressible", "--quiet"], capture_output=True, text=True)
         cmp_file = run_dir / "comparison.json"
         if p.returncode not in (0, 1) or not cmp_file.exists():
             failed.append((name, p.returncode, p.stderr.strip()))
@@ -104,7 +119,8 @@ def main(argv):
         f"Machine: {platform.machine()}, {os.cpu_count()} CPUs, {platform.platform()}. Each case is one "
         "`asperity crosscheck --peer " + ",".join(peers) + "` run (validation/report/peer_table.py): every code "
         "single-threaded, same scene, same dt, same step count, run one after the other. A peer's CPU time is "
-        "its loop without any per-step recorder or dump; asperity's includes its per-step recording. "
+        "its loop without any per-step recorder or dump (LIGGGHTS prints its loop's wall time only, so its "
+        "figure is that wall time); asperity's includes its per-step recording. "
         "Differences are (asperity − peer)/peer. docs/crosscheck.md explains every mapping and systematic "
         "difference.",
         "",
