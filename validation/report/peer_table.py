@@ -2,7 +2,7 @@
 """The peer table: every sphere case in asperity and in each peer, side by side.
 
     peer_table.py ASPERITY_EXE OUT_DIR [--peers yade,lammps,liggghts] [--yade-table DIR] [--jobs N]
-                  [CASES...]
+                  [--tables-only] [CASES...]
 
 Runs `asperity crosscheck CASE --peer P1,P2,... --only-expressible` once per case whose bodies
 are rigid spheres, planes and boxes (default: validation/cases), so every code's CPU time is for
@@ -12,7 +12,8 @@ the same scene and step and measured in one run on one machine, then writes OUT_
 and their ratio, and for a peer that cannot express the case, its reason. With --yade-table DIR
 it also writes the YADE rows alone as DIR/crosscheck.csv and .md (reports/yade/, which the study
 report reads). The cost per step on a two-sphere scene and a 10,000-sphere bed is
-peer_cost.py's (OUT_DIR/cost.md); the `peers-report` target runs both.
+peer_cost.py's (OUT_DIR/cost.md); the `peers-report` target runs both. --tables-only rewrites the
+tables from the comparison.json files an earlier run left in OUT_DIR/runs/.
 """
 import concurrent.futures
 import csv
@@ -51,6 +52,9 @@ def main(argv):
         peers = rest[i + 1].split(",")
         rest = rest[:i] + rest[i + 2:]
     jobs = 1
+    tables_only = "--tables-only" in rest
+    if tables_only:
+        rest.remove("--tables-only")
     if "--jobs" in rest:
         i = rest.index("--jobs")
         jobs = int(rest[i + 1])
@@ -69,6 +73,9 @@ def main(argv):
 
     def crosscheck(f):
         run_dir = out / "runs" / json.loads(f.read_text())["case"]
+        if tables_only:
+            return subprocess.CompletedProcess([], 0 if (run_dir / "comparison.json").exists() else 2, "",
+                                               "no comparison.json from an earlier run")
         return subprocess.run([exe, "crosscheck", str(f), "--out", str(run_dir), "--peer", ",".join(peers),
                                "--only-expressible", "--quiet"], capture_output=True, text=True)
 

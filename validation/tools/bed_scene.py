@@ -14,9 +14,9 @@ bed's height sizes it), the usual fraction of the critical step for a dense bed.
 - bed-10k: the lattice of BM_Packing10k, 25 x 20 x 20 spheres on a simple-cubic lattice resting on
   the plane z = 0 under gravity. The scene loader refuses bodies that start overlapping, so
   neighbours start 1e-9 r apart (2 pm) instead of pressed into each other: the bottom layer meets
-  the plane within a few steps and the compaction runs up the columns (asperity: ~5,000 touching
-  contacts per step on average over 1,000 steps), and every horizontal neighbour is a candidate
-  pair in the neighbour lists (~30,000 pairs). The run is too short for the columns to buckle, so
+  the plane within a few steps and the compaction runs up the columns (asperity: ~2,900 touching
+  contacts per step on average over 500 steps), and every lattice neighbour is a candidate pair
+  in the neighbour lists (28,600 nearest-neighbour pairs). The run is too short for the columns to buckle, so
   every code sees the same contact set.
 """
 import json
