@@ -2,7 +2,7 @@
 """The peer table: every sphere case in asperity and in each peer, side by side.
 
     peer_table.py ASPERITY_EXE OUT_DIR [--peers yade,lammps,liggghts] [--yade-table DIR] [--jobs N]
-                  [--tables-only] [CASES...]
+                  [--tables-only [--also-runs DIR]] [CASES...]
 
 Runs `asperity crosscheck CASE --peer P1,P2,... --only-expressible` once per case whose bodies
 are rigid spheres, planes and boxes (default: validation/cases), so every code's CPU time is for
@@ -13,7 +13,8 @@ and their ratio, and for a peer that cannot express the case, its reason. With -
 it also writes the YADE rows alone as DIR/crosscheck.csv and .md (reports/yade/, which the study
 report reads). The cost per step on a two-sphere scene and a 10,000-sphere bed is
 peer_cost.py's (OUT_DIR/cost.md); the `peers-report` target runs both. --tables-only rewrites the
-tables from the comparison.json files an earlier run left in OUT_DIR/runs/.
+tables from the comparison.json files an earlier run left in OUT_DIR/runs/ (--also-runs DIR: a
+peer a case's comparison lacks is taken from DIR/CASE/comparison.json, another such run's).
 """
 import concurrent.futures
 import csv
@@ -59,6 +60,11 @@ def main(argv):
         i = rest.index("--jobs")
         jobs = int(rest[i + 1])
         rest = rest[:i] + rest[i + 2:]
+    also_runs = []
+    while "--also-runs" in rest:
+        i = rest.index("--also-runs")
+        also_runs.append(pathlib.Path(rest[i + 1]))
+        rest = rest[:i] + rest[i + 2:]
     yade_table = None
     if "--yade-table" in rest:
         i = rest.index("--yade-table")
@@ -87,12 +93,40 @@ def main(argv):
         name = json.loads(f.read_text())["case"]
         run_dir = out / "runs" / name
         cmp_file = run_dir / "comparison.json"
+        if tables_only and not cmp_file.exists():
+            cmp_file = next((d / name / "comparison.json" for d in also_runs
+                             if (d / name / "comparison.json").exists()), cmp_file)
+            p = subprocess.CompletedProcess([], 0 if cmp_file.exists() else 2, "", p.stderr)
         if p.returncode not in (0, 1) or not cmp_file.exists():
             failed.append((name, p.returncode, p.stderr.strip()))
             print(f"[{k + 1}/{len(files)}] {name}: FAILED ({p.returncode}) {p.stderr.strip()}", file=sys.stderr)
             continue
         c = json.loads(cmp_file.read_text())
+        # --also-runs: a peer this run left out of the case comes from another run's comparison.
+        extra = {}
+        for d in also_runs:
+            other = d / name / "comparison.json"
+            if other.exists():
+                oc = json.loads(other.read_text())
+                for peer in oc.get("peers", []):
+                    extra.setdefault(peer, oc)
         for peer in peers:
+            if peer not in c.get("peers", []) and peer not in c.get("not_run", {}) and peer in extra:
+                c = dict(c)
+                oc = extra[peer]
+                for q in ("peak_force", "impulse", "contact_duration"):
+                    c[q] = {"rel_diff": {**c[q]["rel_diff"], peer: oc[q]["rel_diff"].get(peer)}}
+                c["other"] = dict(c["other"])
+                c["other"]["restitution"] = {"rel_diff": {
+                    **c["other"].get("restitution", {}).get("rel_diff", {}),
+                    peer: oc["other"].get("restitution", {}).get("rel_diff", {}).get(peer)}}
+                c["status"] = {**c["status"], peer: oc["status"].get(peer, "")}
+                c["cpu_seconds"] = {**c["cpu_seconds"], peer: oc["cpu_seconds"].get(peer),
+                                    "ratio_asperity_over": {**c["cpu_seconds"]["ratio_asperity_over"],
+                                                            peer: oc["cpu_seconds"]["ratio_asperity_over"].get(peer)}}
+        for peer in peers:
+            if peer not in c["status"] and peer not in c.get("not_run", {}):
+                continue  # not measured in this run (a partial --tables-only)
             row = {"case": name, "law": c["contact_law"], "recorded_body": c.get("recorded_body", ""),
                    "steps": c["steps"], "peer": peer, "status": c["status"].get(peer, "")}
             why = c.get("not_run", {}).get(peer)
