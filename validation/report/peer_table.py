@@ -76,6 +76,7 @@ def main(argv):
         files += sorted(t.rglob("*.json")) if t.is_dir() else [t]
     files = [f for f in files if sphere_case(f)]
     rows, failed = [], []
+    merged = set()  # cases with a peer from --also-runs
 
     def crosscheck(f):
         run_dir = out / "runs" / json.loads(f.read_text())["case"]
@@ -114,6 +115,7 @@ def main(argv):
             if peer not in c.get("peers", []) and peer not in c.get("not_run", {}) and peer in extra:
                 c = dict(c)
                 oc = extra[peer]
+                merged.add(name)
                 for q in ("peak_force", "impulse", "contact_duration"):
                     c[q] = {"rel_diff": {**c[q]["rel_diff"], peer: oc[q]["rel_diff"].get(peer)}}
                 c["other"] = dict(c["other"])
@@ -166,6 +168,11 @@ def main(argv):
         "difference.",
         "",
     ]
+    if merged:
+        lines += [f"{len(merged)} cases take some peers' columns from a second such run on the same machine "
+                  "(`--also-runs`; such a row's asperity CPU is this run's, its ratio that run's).", ""]
+    if failed:
+        lines += [f"{len(failed)} cases were not measured in this run; they are listed at the end of the table.", ""]
     for peer in peers:
         rs = [r for r in rows if r["peer"] == peer and r["status"] not in ("not run",) and r["cpu_peer_s"]]
         nr = [r for r in rows if r["peer"] == peer and r["status"] == "not run"]
