@@ -176,12 +176,14 @@ def main(argv):
         lines += [f"{len(failed)} cases were not measured in this run; they are listed at the end of the table.", ""]
     for peer in peers:
         rs = [r for r in rows if r["peer"] == peer and r["status"] not in ("not run",)
-              and r["cpu_peer_s"] is not None]
+              and not str(r["status"]).startswith("failed") and r["cpu_peer_s"] is not None]
         nr = [r for r in rows if r["peer"] == peer and r["status"] == "not run"]
         ratios = [r["ratio_asperity_over_peer"] for r in rs if r["ratio_asperity_over_peer"]]
         worst = {q: max((abs(r[q + "_rel_diff"]) for r in rs if r[q + "_rel_diff"] is not None), default=None)
                  for q in ("peak_force", "impulse", "contact_duration")}
-        lines.append(f"**{peer}**: {len(rs)} cases run, {len(nr)} not expressible (reason in the table). "
+        fl = [r for r in rows if r["peer"] == peer and str(r["status"]).startswith("failed")]
+        lines.append(f"**{peer}**: {len(rs)} cases run, {len(nr)} not expressible, {len(fl)} refused by the peer "
+                     "as it ran (reasons in the table). "
                      + (f"CPU ratio asperity/{peer}: median {statistics.median(ratios):.3f}, "
                         f"min {min(ratios):.3f}, max {max(ratios):.3f}. " if ratios else "")
                      + "Largest |difference|: " + ", ".join(f"{q} {fmt(v, '.2e')}" for q, v in worst.items()) + ".")
@@ -190,6 +192,11 @@ def main(argv):
               "asperity CPU s | peer CPU s | asperity/peer |",
               "|---|---|---|---|---|---|---|---|---|---|---|---|"]
     for r in rows:
+        if str(r["status"]).startswith("failed"):
+            why = str(r["status"]).split(": ", 1)[-1].split(" [log:")[0].replace("|", "/")
+            lines.append(f"| {r['case']} | {r['law']} | {r['recorded_body']} | {r['steps']} | {r['peer']} | "
+                         f"failed: {why} | | | | | | |")
+            continue
         if r["status"] == "not run":
             lines.append(f"| {r['case']} | {r['law']} | {r['recorded_body']} | {r['steps']} | {r['peer']} | "
                          f"not run: {r['reason']} | | | | | | |")
