@@ -40,6 +40,10 @@ void add_crosscheck_command(CLI::App& app, Action& action) {
   cc->add_flag("--only-expressible", args->o.only_expressible,
                "Run only the peers that can express the scene; list the others with their reason "
                "in comparison.json (\"not_run\") instead of exit 2");
+  cc->add_flag(
+      "--cost-only", args->o.cost_only,
+      "Cost only: each code's plain run (no per-step recorder or dump), timed; writes "
+      "DIR/cost.json (loop and whole-run CPU and wall seconds per code), compares nothing");
   cc->add_flag("-q,--quiet", args->o.quiet, "No summary lines on stderr");
   cc->callback([args, &action] {
     action = [args] {

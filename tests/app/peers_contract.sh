@@ -48,6 +48,36 @@ check "plane-recorded cross-check with three peers exits 0" test $? -eq 0
 check "three peer folders" test -s "$work/c1/yade/summary.json" -a -s "$work/c1/lammps/force.csv" -a -s "$work/c1/liggghts/summary.json"
 check "JUnit: 12 testcases, no failure" grep -q 'tests="12" failures="0" errors="0"' "$work/c1.xml"
 
+# One atom type for spheres of one material (the single-type path the 10,000-sphere cost scene
+# needs): two glass spheres are one LAMMPS and one LIGGGHTS type, and the elastic impact still
+# agrees with asperity to round-off (measured <= 3e-14; 1e-9 leaves room for the platform only).
+pair=$src/validation/cases/hertz/hertz-glass-sphere-sphere-1ms.json
+"$bin" crosscheck "$pair" --out "$work/t1" --peer lammps,liggghts --max-rel-diff 1e-9 --quiet
+check "one-type sphere pair agrees with lammps and liggghts to 1e-9" test $? -eq 0
+check "lammps: 2 atoms, 1 atom type" grep -qx "1 atom types" "$work/t1/lammps/atoms.data"
+check "liggghts: 2 atoms, 1 atom type" grep -qx "1 atom types" "$work/t1/liggghts/atoms.data"
+
+# --cost-only: each code's plain run, nothing recorded per step, DIR/cost.json.
+"$bin" crosscheck "$plane" --out "$work/k0" --cost-only --max-rel-diff 0.1 2> "$work/k0.err"
+check "--cost-only with --max-rel-diff exits 2" test $? -eq 2
+check "--cost-only with --max-rel-diff: nothing written" test ! -e "$work/k0"
+"$bin" crosscheck "$plane" --out "$work/k1" --peer yade,lammps,liggghts --cost-only --quiet
+check "--cost-only with three peers exits 0" test $? -eq 0
+check "--cost-only: no trace written" test ! -e "$work/k1/yade/raw.csv" -a ! -e "$work/k1/lammps/trace.dump" -a ! -e "$work/k1/liggghts/trace.dump"
+check "--cost-only: four codes, each with its steps' CPU" python3 -c "
+import json, sys
+c = json.load(open(sys.argv[1]))
+codes = c['codes']
+assert sorted(codes) == ['asperity', 'lammps', 'liggghts', 'yade'], codes
+for k, v in codes.items():
+    assert v['run_cpu_seconds'] > 0, (k, v)
+    assert abs(v['cpu_per_step_per_particle'] * c['steps'] * c['particles'] - v['step_cpu_seconds']) <= 1e-12, k
+    if k == 'asperity' or v['step_cpu_from'] == \"the peer's loop CPU clock\":
+        assert v['step_cpu_seconds'] == v['loop_cpu_seconds'] >= 0, (k, v)
+    else:  # the difference of two processes: may be below zero for a run this short (531 steps)
+        assert abs(v['step_cpu_seconds'] - (v['run_cpu_seconds'] - v['setup_cpu_seconds'])) <= 1e-9, (k, v)
+" "$work/k1/cost.json"
+
 # The example external solver: exact passes the 24 Hertz cases, x1.05 fails them readably.
 "$bin" validate "$src/validation/cases/hertz" --out "$work/s1" -q --junit "$work/s1.xml" \
   --solver-cmd "$solver {scene} {out}"

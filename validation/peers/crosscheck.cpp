@@ -4,11 +4,15 @@
 // measuring's. docs/crosscheck.md has each peer's mapping and every systematic difference.
 #include "crosscheck.hpp"
 
+#include <sys/resource.h>
+
 #include <algorithm>
+#include <chrono>
 #include <cmath>
 #include <fstream>
 #include <iostream>
 
+#include "core/clock.hpp"
 #include "core/error.hpp"
 #include "io/json_file.hpp"
 #include "junit.hpp"
@@ -70,12 +74,109 @@ struct Planned {
   fs::path exe;
 };
 
+// CPU seconds of the terminated, waited-for children (and theirs): a peer's whole process.
+double children_cpu_seconds() {
+  rusage u{};
+  getrusage(RUSAGE_CHILDREN, &u);
+  auto sec = [](const timeval& t) {
+    return static_cast<double>(t.tv_sec) + 1e-6 * static_cast<double>(t.tv_usec);
+  };
+  return sec(u.ru_utime) + sec(u.ru_stime);
+}
+
+double seconds_since(std::chrono::steady_clock::time_point t0) {
+  return std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+}
+
+// One code's cost. step_cpu: the CPU the steps cost, from which the per-step, per-particle figure.
+Json cost_entry(double step_cpu, double loop_cpu, double loop_wall, double run_cpu, double run_wall,
+                long steps, std::size_t particles, const std::string& version,
+                const std::string& note) {
+  const double per = static_cast<double>(std::max(steps, 1L)) *
+                     static_cast<double>(std::max<std::size_t>(particles, 1));
+  return {{"step_cpu_seconds", step_cpu}, {"cpu_per_step_per_particle", step_cpu / per},
+          {"loop_cpu_seconds", loop_cpu}, {"loop_wall_seconds", loop_wall},
+          {"run_cpu_seconds", run_cpu},   {"run_wall_seconds", run_wall},
+          {"version", version},           {"loop_note", note}};
+}
+
+// A peer's plain run as a process: its CPU (children's) and wall seconds, and what it reported.
+struct ProcessRun {
+  PeerTrace trace;
+  double cpu = 0, wall = 0;
+};
+ProcessRun timed_run(const Planned& p, const scene::SceneDef& s, const Resolved& r,
+                     const fs::path& dir) {
+  fs::create_directories(dir);
+  for (const auto& e : fs::directory_iterator(dir)) fs::remove_all(e.path());
+  ProcessRun out;
+  const double cpu0 = children_cpu_seconds();
+  const auto wall0 = std::chrono::steady_clock::now();
+  out.trace = p.adapter->run(s, r, p.exe, dir, RunMode::cost);
+  out.wall = seconds_since(wall0);
+  out.cpu = children_cpu_seconds() - cpu0;
+  return out;
+}
+
+// The cost table's run: each peer's plain run alone, timed as a process; DIR/cost.json.
+int cost_only(const CrosscheckOptions& o, const scene::SceneDef& s, const run::RunResult& a,
+              double run_cpu, double run_wall, const Resolved& resolved,
+              const std::vector<Planned>& plan) {
+  std::size_t particles = 0;
+  for (const scene::BodyDef& b : s.bodies)
+    particles += !b.fixed && std::holds_alternative<scene::SphereShape>(b.shape) ? 1 : 0;
+  Json c;
+  c["scene"] = s.name;
+  c["file"] = o.scene_file.string();
+  c["particles"] = particles;
+  c["dt"] = resolved.dt;
+  c["steps"] = resolved.steps;
+  // asperity's steps: its time loop's thread CPU (run/time_loop.hpp), set-up excluded.
+  const double loop_cpu = a.summary.at("cpu_seconds").get<double>();
+  c["codes"]["asperity"] =
+      cost_entry(loop_cpu, loop_cpu, a.summary.at("wall_seconds").get<double>(), run_cpu, run_wall,
+                 resolved.steps, particles, "asperity 0.1.0",
+                 "asperity's time loop (its per-step recording of the recorded body included)");
+  c["codes"]["asperity"]["step_cpu_from"] = "asperity's time-loop thread CPU";
+  std::vector<std::string> failed;
+  for (const Planned& p : plan) {
+    // The steps' CPU: the peer's own CPU clock of its loop (YADE: process_time around O.run;
+    // LAMMPS: loop time × its CPU use), else (LIGGGHTS prints its loop's wall time only) its
+    // process CPU at the scene's step count less the same process at 0 steps (start, input,
+    // set-up, exit; into DIR/setup/PEER/), which every peer also gets as a cross-check.
+    try {
+      const fs::path dir = o.out / p.adapter->name;
+      const ProcessRun setup =
+          timed_run(p, s, {.dt = resolved.dt, .steps = 0}, o.out / "setup" / p.adapter->name);
+      const ProcessRun full = timed_run(p, s, resolved, dir);
+      const double by_process = full.cpu - setup.cpu;
+      Json e = cost_entry(full.trace.cpu_measured ? full.trace.cpu_seconds : by_process,
+                          full.trace.cpu_seconds, full.trace.wall_seconds, full.cpu, full.wall,
+                          resolved.steps, particles, full.trace.version, p.adapter->cpu_note);
+      e["step_cpu_from"] =
+          full.trace.cpu_measured ? "the peer's loop CPU clock" : "process CPU less a 0-step run";
+      e["process_step_cpu_seconds"] = by_process;
+      e["setup_cpu_seconds"] = setup.cpu;
+      c["codes"][p.adapter->name] = e;
+    } catch (const PeerFailure& e) {
+      c["failed"][p.adapter->name] = e.what();
+      failed.push_back(e.what());
+    }
+  }
+  write_file(o.out / "cost.json", c.dump(2) + "\n");
+  for (const std::string& why : failed) std::cerr << "asperity: crosscheck: " << why << "\n";
+  if (!o.quiet && failed.empty()) std::cerr << "-> " << (o.out / "cost.json").string() << "\n";
+  return failed.empty() ? kExitOk : kExitFailure;
+}
+
 }  // namespace
 
 int crosscheck(const CrosscheckOptions& o) {
   const scene::SceneDef s = load_scene_or_case(o.scene_file);
   // Every peer is found and asked first: bad input is reported before anything runs or is written.
   if (o.peers.empty()) throw InputError("crosscheck: --peer: name at least one peer");
+  if (o.cost_only && (o.max_rel_diff || o.junit))
+    throw InputError("crosscheck: --cost-only compares nothing: drop --max-rel-diff and --junit");
   std::vector<Planned> plan;
   std::vector<std::pair<std::string, std::string>> not_run;  // peer, why it cannot express s
   for (const std::string& name : o.peers) {
@@ -95,9 +196,13 @@ int crosscheck(const CrosscheckOptions& o) {
 
   fs::create_directories(o.out);
   fs::remove(o.out / "comparison.json");
+  fs::remove(o.out / "cost.json");
   if (o.junit) fs::remove(*o.junit);
+  const double cpu0 = cpu_seconds();
+  const auto wall0 = std::chrono::steady_clock::now();
   const run::RunResult a = run::run_scene(s, {.keep_rows = true});
   run::write_outputs(a, o.out / "asperity");
+  const double run_cpu = cpu_seconds() - cpu0, run_wall = seconds_since(wall0);
   if (a.status == "unstable") {
     std::cerr << "asperity: crosscheck: asperity's run went unstable (" << a.message
               << "); no peer run\n";
@@ -105,6 +210,7 @@ int crosscheck(const CrosscheckOptions& o) {
   }
   const Resolved resolved{.dt = a.summary.at("dt").get<double>(),
                           .steps = a.summary.at("steps").get<long>()};
+  if (o.cost_only) return cost_only(o, s, a, run_cpu, run_wall, resolved, plan);
 
   std::vector<std::pair<std::string, Json>> done;  // peer -> summary
   std::vector<std::pair<std::string, std::string>> failed;

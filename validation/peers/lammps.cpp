@@ -12,12 +12,12 @@
 //                         clips the normal force at zero as asperity does; e = 1: no damping
 //   linear                hooke k_n with η_n = ζ√(m* k_n) (damping velocity, per pair of bodies)
 //                         and linear_history k_t with x_γt = √(k_t/k_n)
-// Every free sphere is its own atom type, so m* and therefore every coefficient is exact per pair.
-// A plane is a fix wall/gran per sphere (R* = r: a flat wall's radius is infinite there).
+// Free spheres share an atom type when their coefficients coincide (lammps_family::atom_types: a
+// material; under linear, a material and a mass), so every coefficient is exact per pair. A plane
+// is a fix wall/gran per sphere type (R* = r: a flat wall's radius is infinite there).
 #include <cmath>
 #include <sstream>
 
-#include "core/error.hpp"
 #include "lammps_family.hpp"
 #include "peer_adapters.hpp"
 
@@ -46,18 +46,8 @@ double tsuji_e_for(double zeta) {
 
 void check(const scene::SceneDef& s) {
   lammps_family::check_common(s, "lammps");
-  if (s.contact.law == scene::ContactLaw::linear) return;
-  for (std::size_t a = 0; a < s.bodies.size(); ++a) {
-    for (std::size_t b = a + 1; b < s.bodies.size(); ++b) {
-      const double z = lammps_family::pair_zeta(s, static_cast<int>(a), static_cast<int>(b));
-      if (z > kAlphaMax || (z > 0 && z < kAlphaMin)) {
-        throw InputError(s.file.string() + ": restitution: lammps: bodies \"" + s.bodies[a].name +
-                         "\" and \"" + s.bodies[b].name +
-                         "\" need the Hertz damping ζ = " + num(z) +
-                         ", outside what LAMMPS's Tsuji map α(e) reaches (0.0003 to " + "1.2728)");
-      }
-    }
-  }
+  lammps_family::check_damping(s, "lammps", kAlphaMin, kAlphaMax,
+                               "outside what LAMMPS's Tsuji map α(e) reaches (0.0003 to 1.2728)");
 }
 
 // The pair_coeff / fix wall/gran model words for the contact of sphere a with body b.
@@ -85,97 +75,48 @@ std::string model(const scene::SceneDef& s, int a, int b) {
   return o.str();
 }
 
-std::string input(const scene::SceneDef& s, const Resolved& r, bool trace) {
+// Atoms, pair coefficients per pair of sphere types, one fix wall/gran per plane and sphere type.
+std::string setup(const scene::SceneDef& s, const lammps_family::Types& types,
+                  std::vector<std::string>& plane_force) {
   using namespace lammps_family;
-  const std::vector<int> spheres = free_spheres(s);
-  const int n = static_cast<int>(spheres.size());
+  const int n = types.sphere_types;
+  const auto& rep = types.body;  // a sphere of each type
   std::ostringstream o;
   o << "# asperity scene \"" << s.name << "\" (validation/peers/lammps.cpp writes this file)\n"
     << "units si\natom_style sphere\natom_modify map array\nboundary m m m\nnewton off\n"
     << "comm_modify vel yes\n";
-  o << atoms_block(s, spheres) << "pair_style granular\n";
+  o << atoms_block(s, types) << "pair_style granular\n";
   for (int i = 0; i < n; ++i) {
-    for (int j = i; j < n; ++j) {
-      o << "pair_coeff " << i + 1 << ' ' << j + 1 << ' '
-        << (i == j ? model(s, spheres[i], spheres[i]) : model(s, spheres[i], spheres[j])) << "\n";
-    }
+    for (int j = i; j < n; ++j)
+      o << "pair_coeff " << i + 1 << ' ' << j + 1 << ' ' << model(s, rep[i], rep[j]) << "\n";
   }
-  std::vector<std::string> wall_force;  // dump columns of the walls' forces on the spheres
   const char* axis_name[] = {"xplane", "yplane", "zplane"};
-  for (int w = 0; w < static_cast<int>(s.bodies.size()); ++w) {
-    const auto* pl = std::get_if<scene::PlaneShape>(&s.bodies[w].shape);
-    if (!pl) continue;
-    const AxisPlane p = axis_plane(*pl);
+  for (int w : types.planes) {
+    const AxisPlane p = axis_plane(std::get<scene::PlaneShape>(s.bodies[w].shape));
     for (int k = 0; k < n; ++k) {
-      std::ostringstream fix_id;
+      std::ostringstream fix_id;  // (string operator+ here trips GCC 12's -Wrestrict)
       fix_id << 'w' << w << '_' << k + 1;
       const std::string id = fix_id.str();
-      o << "fix " << id << " g" << k + 1 << " wall/gran granular " << model(s, spheres[k], w) << ' '
+      o << "fix " << id << " t" << k + 1 << " wall/gran granular " << model(s, rep[k], w) << ' '
         << axis_name[p.axis] << ' ' << (p.positive ? num(p.at) : "NULL") << ' '
         << (p.positive ? "NULL" : num(p.at)) << " contacts\n";
       if (w == s.record.body) {
         for (int c = 2; c <= 4; ++c) {
           std::ostringstream col;
           col << "f_" << id << '[' << c << ']';
-          wall_force.push_back(col.str());
+          plane_force.push_back(col.str());
         }
       }
     }
   }
-  const double g = s.gravity.norm();
-  if (g > 0) {
-    const Vec3 d = s.gravity / g;
-    o << "fix gravity all gravity " << num(g) << " vector " << num(d.x()) << ' ' << num(d.y())
-      << ' ' << num(d.z()) << "\n";
-  }
-  o << "fix integrate all nve/sphere\ntimestep " << num(r.dt) << "\nthermo " << r.steps << "\n";
-  if (trace) {
-    o << "dump trace all custom 1 trace.dump id x y z vx vy vz fx fy fz omegax omegay omegaz";
-    for (const auto& c : wall_force) o << ' ' << c;
-    o << "\ndump_modify trace sort id format float %.17g\n";
-  }
-  o << "run " << r.steps << "\n";
   return o.str();
 }
 
-PeerTrace run(const scene::SceneDef& s, const Resolved& r, const fs::path& exe,
-              const fs::path& dir) {
-  using namespace lammps_family;
-  // 1. Cost: the plain run, no dump. 2. The trace: the same run dumping every step.
-  const std::vector<int> atoms = free_spheres(s);
-  write_file(dir / "atoms.data", data_file(s, atoms, static_cast<int>(atoms.size()),
-                                           static_cast<double>(r.steps) * r.dt));
-  write_file(dir / "in.timing", input(s, r, false));
-  write_file(dir / "in.trace", input(s, r, true));
-  run_input(exe, dir, "in.timing", "timing.log", "lammps");
-  run_input(exe, dir, "in.trace", "trace.log", "lammps");
-  const std::vector<int> spheres = free_spheres(s);
-  const int rec = s.record.body;
-  const bool rec_is_plane = std::holds_alternative<scene::PlaneShape>(s.bodies[rec].shape);
-  int rec_atom = -1;
-  for (std::size_t k = 0; k < spheres.size(); ++k)
-    if (spheres[k] == rec) rec_atom = static_cast<int>(k);
-  std::vector<double> mass;
-  for (int b : spheres) mass.push_back(sphere_mass(s, b));
-  // The recorded body's contact force: a sphere's total force less its weight (fix gravity adds
-  // exactly m g); a plane's is minus the sum of what its wall fixes put on the spheres.
-  auto force = [&](const std::vector<std::vector<double>>& rows) -> Vec3 {
-    if (rec_is_plane) {
-      Vec3 f = Vec3::Zero();
-      for (const auto& row : rows) {
-        for (std::size_t c = 13; c + 2 < row.size(); c += 3)
-          f -= Vec3(row[c], row[c + 1], row[c + 2]);
-      }
-      return f;
-    }
-    const auto& row = rows[static_cast<std::size_t>(rec_atom)];
-    return Vec3(row[7], row[8], row[9]) - mass[static_cast<std::size_t>(rec_atom)] * s.gravity;
-  };
-  PeerTrace tr =
-      read_dump(dir / "trace.dump", static_cast<int>(spheres.size()), r.dt, force, "lammps");
-  tr.cpu_seconds = loop_cpu_seconds(dir / "timing.log", &tr.wall_seconds, "lammps");
-  tr.version = log_version(dir / "timing.log");
-  return tr;
+PeerTrace run(const scene::SceneDef& s, const Resolved& r, const fs::path& exe, const fs::path& dir,
+              RunMode mode) {
+  static constexpr lammps_family::Dialect dialect{
+      .peer = "lammps", .typed_planes = false, .line_format = false, .setup = setup};
+  return lammps_family::run(dialect, s, r, exe, dir, mode);
 }
 
 }  // namespace

@@ -11,12 +11,12 @@
 //                         dashpot); limitForce on clips the normal force at zero as asperity does
 //   linear                model hooke/stiffness with k_n, k_t, γ_n = ζ√(k_n/m*), γ_t = ζ√(k_t/m*)
 //                         per pair of atom types (its damping is γ m* v)
-// Every free sphere and every plane is its own atom type, so m* and each coefficient is per pair.
+// Free spheres share an atom type when their coefficients coincide (lammps_family::atom_types),
+// every plane is a type of its own, so m* and each coefficient is exact per pair.
 #include <cmath>
 #include <numbers>
 #include <sstream>
 
-#include "core/error.hpp"
 #include "lammps_family.hpp"
 #include "peer_adapters.hpp"
 
@@ -32,19 +32,9 @@ const double kZetaMax =
 
 void check(const scene::SceneDef& s) {
   lammps_family::check_common(s, "liggghts");
-  if (s.contact.law == scene::ContactLaw::linear) return;
-  for (std::size_t a = 0; a < s.bodies.size(); ++a) {
-    for (std::size_t b = a + 1; b < s.bodies.size(); ++b) {
-      const double z = lammps_family::pair_zeta(s, static_cast<int>(a), static_cast<int>(b));
-      if (z >= kZetaMax) {
-        throw InputError(s.file.string() + ": restitution: liggghts: bodies \"" + s.bodies[a].name +
-                         "\" and \"" + s.bodies[b].name +
-                         "\" need the Hertz damping ζ = " + num(z) +
-                         ", beyond what LIGGGHTS's β = ln e/√(ln²e + π²) reaches with its e > 0.05 "
-                         "(ζ = √5|β| < 1.543)");
-      }
-    }
-  }
+  lammps_family::check_damping(s, "liggghts", 0.0, kZetaMax,
+                               "beyond what LIGGGHTS's β = ln e/√(ln²e + π²) reaches with its e > "
+                               "0.05 (ζ = √5|β| < 1.543)");
 }
 
 // The restitution whose LIGGGHTS β gives ζ = √5 |β|.
@@ -53,14 +43,12 @@ double liggghts_e_for(double zeta) {
   return std::exp(-std::numbers::pi * beta / std::sqrt(1 - beta * beta));
 }
 
-std::string input(const scene::SceneDef& s, const Resolved& r, bool trace) {
+// Atoms, per-type and per-type-pair properties, one primitive wall per plane (its own type).
+std::string setup(const scene::SceneDef& s, const lammps_family::Types& types,
+                  std::vector<std::string>& plane_force) {
   using namespace lammps_family;
-  const std::vector<int> spheres = free_spheres(s);
-  std::vector<int> walls;
-  for (int b = 0; b < static_cast<int>(s.bodies.size()); ++b)
-    if (std::holds_alternative<scene::PlaneShape>(s.bodies[b].shape)) walls.push_back(b);
-  std::vector<int> body_of_type = spheres;  // type k + 1 -> scene body
-  body_of_type.insert(body_of_type.end(), walls.begin(), walls.end());
+  const std::vector<int>& walls = types.planes;
+  const std::vector<int>& body_of_type = types.body;  // type k + 1 -> scene body
   const int nt = static_cast<int>(body_of_type.size());
   const bool linear = s.contact.law == scene::ContactLaw::linear;
 
@@ -68,8 +56,7 @@ std::string input(const scene::SceneDef& s, const Resolved& r, bool trace) {
   o << "# asperity scene \"" << s.name << "\" (validation/peers/liggghts.cpp writes this file)\n"
     << "units si\nhard_particles yes\natom_style granular\natom_modify map array\n"
     << "boundary m m m\nnewton off\ncommunicate single vel yes\n"
-
-    << atoms_block(s, spheres);
+    << atoms_block(s, types);
   auto per_type = [&](const char* name, auto value) {
     o << "fix m_" << name << " all property/global " << name << " peratomtype";
     for (int b : body_of_type) o << ' ' << num(value(s.materials[s.bodies[b].material]));
@@ -118,78 +105,30 @@ std::string input(const scene::SceneDef& s, const Resolved& r, bool trace) {
   o << "pair_coeff * *\n";
   const char* axis_name[] = {"xplane", "yplane", "zplane"};
   const std::string model = linear ? "hooke/stiffness" : "hertz";
-  std::vector<std::string> wall_force;
   for (std::size_t k = 0; k < walls.size(); ++k) {
     const AxisPlane p = axis_plane(std::get<scene::PlaneShape>(s.bodies[walls[k]].shape));
     std::ostringstream fix_id;
     fix_id << 'w' << k;
     const std::string id = fix_id.str();
     o << "fix " << id << " all wall/gran model " << model << " tangential history primitive type "
-      << spheres.size() + k + 1 << ' ' << axis_name[p.axis] << ' ' << num(p.at)
-      << " store_force yes limitForce on\n";
+      << types.sphere_types + static_cast<int>(k) + 1 << ' ' << axis_name[p.axis] << ' '
+      << num(p.at) << " store_force yes limitForce on\n";
     if (walls[k] == s.record.body) {
       for (int c = 1; c <= 3; ++c) {
         std::ostringstream col;
         col << "f_force_" << id << '[' << c << ']';
-        wall_force.push_back(col.str());
+        plane_force.push_back(col.str());
       }
     }
   }
-  const double g = s.gravity.norm();
-  if (g > 0) {
-    const Vec3 d = s.gravity / g;
-    o << "fix gravity all gravity " << num(g) << " vector " << num(d.x()) << ' ' << num(d.y())
-      << ' ' << num(d.z()) << "\n";
-  }
-  o << "fix integrate all nve/sphere\ntimestep " << num(r.dt) << "\nthermo " << r.steps << "\n";
-  if (trace) {
-    o << "dump trace all custom 1 trace.dump id x y z vx vy vz fx fy fz omegax omegay omegaz";
-    for (const auto& c : wall_force) o << ' ' << c;
-    o << "\ndump_modify trace sort id format \"%d";
-    for (std::size_t c = 0; c < 12 + wall_force.size(); ++c) o << " %.17g";
-    o << "\"\n";
-  }
-  o << "run " << r.steps << "\n";
   return o.str();
 }
 
-PeerTrace run(const scene::SceneDef& s, const Resolved& r, const fs::path& exe,
-              const fs::path& dir) {
-  using namespace lammps_family;
-  const std::vector<int> atoms = free_spheres(s);
-  int walls = 0;  // each plane is an atom type of its own (its material)
-  for (const scene::BodyDef& b : s.bodies)
-    walls += std::holds_alternative<scene::PlaneShape>(b.shape) ? 1 : 0;
-  write_file(dir / "atoms.data", data_file(s, atoms, static_cast<int>(atoms.size()) + walls,
-                                           static_cast<double>(r.steps) * r.dt));
-  write_file(dir / "in.timing", input(s, r, false));
-  write_file(dir / "in.trace", input(s, r, true));
-  run_input(exe, dir, "in.timing", "timing.log", "liggghts");
-  run_input(exe, dir, "in.trace", "trace.log", "liggghts");
-  const std::vector<int> spheres = free_spheres(s);
-  const int rec = s.record.body;
-  const bool rec_is_plane = std::holds_alternative<scene::PlaneShape>(s.bodies[rec].shape);
-  int rec_atom = -1;
-  for (std::size_t k = 0; k < spheres.size(); ++k)
-    if (spheres[k] == rec) rec_atom = static_cast<int>(k);
-  const double rec_mass = rec_atom >= 0 ? sphere_mass(s, rec) : 0;
-  // A sphere's contact force is its total force less its weight; a plane's is minus the sum of
-  // the wall forces its fix stored on the spheres (store_force).
-  auto force = [&](const std::vector<std::vector<double>>& rows) -> Vec3 {
-    if (rec_is_plane) {
-      Vec3 f = Vec3::Zero();
-      for (const auto& row : rows)
-        if (row.size() >= 16) f -= Vec3(row[13], row[14], row[15]);
-      return f;
-    }
-    const auto& row = rows[static_cast<std::size_t>(rec_atom)];
-    return Vec3(row[7], row[8], row[9]) - rec_mass * s.gravity;
-  };
-  PeerTrace tr =
-      read_dump(dir / "trace.dump", static_cast<int>(spheres.size()), r.dt, force, "liggghts");
-  tr.cpu_seconds = loop_cpu_seconds(dir / "timing.log", &tr.wall_seconds, "liggghts");
-  tr.version = log_version(dir / "timing.log");
-  return tr;
+PeerTrace run(const scene::SceneDef& s, const Resolved& r, const fs::path& exe, const fs::path& dir,
+              RunMode mode) {
+  static constexpr lammps_family::Dialect dialect{
+      .peer = "liggghts", .typed_planes = true, .line_format = true, .setup = setup};
+  return lammps_family::run(dialect, s, r, exe, dir, mode);
 }
 
 }  // namespace
@@ -198,7 +137,9 @@ Adapter liggghts_adapter() {
   return {.name = "liggghts",
           .program = "liggghts",
           .package = "liggghts",
-          .cpu_note = "LIGGGHTS's loop time (one process, one thread), a run without the dump",
+          .cpu_note =
+              "LIGGGHTS's loop time (one process, one thread), a run without the dump: "
+              "wall time, the only clock it prints",
           .check = check,
           .run = run};
 }

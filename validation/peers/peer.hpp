@@ -35,9 +35,14 @@ struct Resolved {
   long steps = 0;  // steps after t = 0 (asperity's, so both stop at the same time)
 };
 
-// One sample per step, t = 0 included. Forces are the recorded body's total contact force (no
-// gravity); bodies are the scene's traced bodies in scene order (`traced_bodies`; fixed bodies
-// stay where the scene puts them).
+// What a peer run is for: `trace` records every step (the cross-check's measures) after a plain
+// run that gives the cost; `cost` makes the plain run alone (the cost table: no dump, no per-step
+// recorder, so a 10,000-sphere scene writes nothing per step).
+enum class RunMode { trace, cost };
+
+// One sample per step, t = 0 included (empty after a RunMode::cost run). Forces are the recorded
+// body's total contact force (no gravity); bodies are the scene's traced bodies in scene order
+// (`traced_bodies`; fixed bodies stay where the scene puts them).
 struct PeerTrace {
   std::vector<double> t;                // s
   std::vector<Vec3> force;              // N, on the recorded body
@@ -51,7 +56,8 @@ struct PeerTrace {
   std::vector<Vec3> normal;
   double cpu_seconds = 0;  // the peer's engine loop alone, no recorder
   double wall_seconds = 0;
-  std::string version;                                              // the peer's own version string
+  bool cpu_measured = true;  // false: the peer gives its loop's wall time only (cpu_seconds is it)
+  std::string version;       // the peer's own version string
   nlohmann::ordered_json extra = nlohmann::ordered_json::object();  // e.g. YADE's stiffness
 };
 
@@ -63,9 +69,11 @@ struct Adapter {
   // Throws InputError naming the scene file, the key and why the peer cannot express it.
   void (*check)(const scene::SceneDef& scene);
   // Writes the peer's input into `dir`, runs `exe` there, reads its output back. Throws
-  // PeerFailure with the peer's own words when it fails.
+  // PeerFailure with the peer's own words when it fails. RunMode::cost runs the peer once, a
+  // single process, so its whole run is the children's CPU time around this call.
   PeerTrace (*run)(const scene::SceneDef& scene, const Resolved& resolved,
-                   const std::filesystem::path& exe, const std::filesystem::path& dir);
+                   const std::filesystem::path& exe, const std::filesystem::path& dir,
+                   RunMode mode);
 };
 
 // The table of peers; find_adapter throws InputError naming the known ones.

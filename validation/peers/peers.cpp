@@ -306,7 +306,7 @@ run::RunResult run_peer(const Adapter& a, const fs::path& exe, const scene::Scen
   fs::create_directories(dir);
   // Nothing from an earlier run may be mistaken for this one's.
   for (const auto& e : fs::directory_iterator(dir)) fs::remove_all(e.path());
-  const PeerTrace tr = a.run(scene, resolved, exe, dir);
+  const PeerTrace tr = a.run(scene, resolved, exe, dir, RunMode::trace);
   run::RunResult r = measure_trace(scene, resolved, tr, a.name);
   run::write_outputs(r, dir);
   fs::remove(dir / "energy.csv");  // peers' energy terms are not recorded (docs/crosscheck.md)

@@ -9,6 +9,8 @@
 #                    the code that measures asperity's runs
 #   OUTDIR/raw.json  final angular velocities, CPU seconds of a run without the per-step recorder,
 #                    the stiffness each contact got, YADE's version
+# With "cost_only" in INPUT.json it makes the plain run alone and writes raw.json with its CPU and
+# wall seconds and YADE's version (the cost table: no recorder, nothing per step).
 # On any error it writes OUTDIR/error.txt and exits with status 2.
 #
 # The mapping (docs/crosscheck.md explains each choice):
@@ -275,8 +277,18 @@ def main():
     # 1. Cost: the plain engine list, no Python in the loop.
     build(spec, record=False)
     t0, w0 = time.process_time(), time.perf_counter()
-    O.run(steps, True)
+    if steps > 0:  # a cost run of 0 steps times the set-up alone (YADE reads nSteps <= 0 as "no limit")
+        O.run(steps, True)
     cpu, wall = time.process_time() - t0, time.perf_counter() - w0
+
+    if spec.get("cost_only"):
+        # The cost table (validation/report/peer_cost.py): the plain run alone.
+        raw = {"yade_version": yade.config.version, "steps": steps, "dt": O.dt, "cpu_seconds": cpu,
+               "wall_seconds": wall}
+        with open(os.path.join(out, "raw.json.partial"), "w") as fh:
+            json.dump(raw, fh, indent=2)
+        os.replace(os.path.join(out, "raw.json.partial"), os.path.join(out, "raw.json"))
+        return
 
     # 2. The force history: the same scene with a recorder after the interaction loop. One extra
     #    iteration gives the row at t = steps * dt (forces at the final positions), as asperity's.

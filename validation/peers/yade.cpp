@@ -123,14 +123,15 @@ Json yade_input(const scene::SceneDef& s, const Resolved& r) {
   return j;
 }
 
-PeerTrace run(const scene::SceneDef& s, const Resolved& r, const fs::path& exe,
-              const fs::path& dir) {
+PeerTrace run(const scene::SceneDef& s, const Resolved& r, const fs::path& exe, const fs::path& dir,
+              RunMode mode) {
   const fs::path script = ASPERITY_YADE_SCRIPT;
   if (!fs::is_regular_file(script))
     throw PeerFailure("yade: " + script.string() + ": translator script not found");
   const bool poly = polyhedra(s);
-  write_file(dir / "input.json",
-             (poly ? yade_polyhedra_input(s, r.dt, r.steps) : yade_input(s, r)).dump(2) + "\n");
+  Json in = poly ? yade_polyhedra_input(s, r.dt, r.steps) : yade_input(s, r);
+  in["cost_only"] = mode == RunMode::cost;  // scene_to_yade.py: the plain run alone
+  write_file(dir / "input.json", in.dump(2) + "\n");
   const std::string cmd = shell_quote(exe.string()) + " -n -x " + shell_quote(script.string()) +
                           " " + shell_quote((dir / "input.json").string()) + " " +
                           shell_quote(dir.string()) + " > " +
@@ -144,9 +145,16 @@ PeerTrace run(const scene::SceneDef& s, const Resolved& r, const fs::path& exe,
     throw PeerFailure("yade failed (exit " + std::to_string(code) + "): " + why +
                       " [log: " + (dir / "yade.log").string() + "]");
   }
+  const Json raw = Json::parse(std::ifstream(dir / "raw.json"));
+  if (mode == RunMode::cost) {
+    PeerTrace tr;
+    tr.cpu_seconds = raw.at("cpu_seconds").get<double>();
+    tr.wall_seconds = raw.at("wall_seconds").get<double>();
+    tr.version = raw.value("yade_version", "");
+    return tr;
+  }
   const std::vector<int> traced = traced_bodies(s, poly);
   PeerTrace tr = read_trace_csv(dir / "raw.csv", static_cast<int>(traced.size()), "yade", poly);
-  const Json raw = Json::parse(std::ifstream(dir / "raw.json"));
   for (int b : traced) {
     const auto& w = raw.at("final").at(s.bodies[b].name).at("angular_velocity");
     tr.final_w.emplace_back(w[0].get<double>(), w[1].get<double>(), w[2].get<double>());
