@@ -145,7 +145,7 @@ void register_set(int count) {
     for (const long faces : {100L, 1000L}) {
       const std::string name =
           "BM_CollisionSet/" + p.at("name").get<std::string>() + "/" + std::to_string(faces);
-      benchmark::RegisterBenchmark(name, BM_CollisionSet, pd, faces)
+      benchmark::RegisterBenchmark(name.c_str(), BM_CollisionSet, pd, faces)
           ->Iterations(1)
           ->UseManualTime()
           ->Unit(benchmark::kSecond);
