@@ -443,9 +443,9 @@ double limit_penalty(World& w, double factor) {
     if (w.bodies[b].kind != BodyKind::deformable) continue;
     const int bi = static_cast<int>(b);
     const BodySteps s = body_steps(w, bi, k_row);
-    const double beta = w.elements[w.bodies[b].elements].damping;
-    auto excess = [&](double x) {  // dt_element / dt_critical(x) − factor
-      return s.element.dt / damped_step(combined_omega(w, bi, s, x), beta) - factor;
+    // Undamped: ω(x)/ω_element − factor, so that a body's damping_ratio does not move its penalty.
+    auto excess = [&](double x) {
+      return combined_omega(w, bi, s, x) / s.element.omega_max - factor;
     };
     double lo = 0, hi = 1, f_lo = 1 - factor, f_hi = excess(1);
     if (f_hi <= 0) continue;

@@ -58,8 +58,9 @@ CriticalStep critical_step(const World& world);
 // (Munjiza 2004, eqs 2.56–2.57), measured in reports/fem/mesh_step.md on the FEM/DEM gates.
 //
 // How: ω² of elements plus face springs grows with s (the springs are linear in p), the element
-// part does not; regula falsi (Illinois) on dt_element / dt_critical(s) − factor from s = 0
-// (ratio 1) and s = 1 keeps the last s that meets the factor, six evaluations of the bound.
+// part does not; regula falsi (Illinois) on ω(s)/ω_element − factor (undamped, so a body's
+// damping_ratio leaves its penalty alone) from s = 0 (ratio 1) and s = 1 keeps the last s that
+// meets the factor, six evaluations of the bound.
 // Rigid bodies have no element limit and are left alone.
 double limit_penalty(World& world, double factor);
 
