@@ -4,8 +4,8 @@
 #include <ctime>
 
 #include "contact/munjiza_potential.hpp"
-#include "fdem_scenes.hpp"
 #include "fdem/time_step.hpp"
+#include "fdem_scenes.hpp"
 #include "fem/tet_elements.hpp"
 #if ASPERITY_HAVE_GEOMETRY
 #include "geometry/mesh_pipeline.hpp"
@@ -107,8 +107,7 @@ void BM_Collision(benchmark::State& state) {
   geometry::ParticleDef pd{.seed = 3, .size = 0.05, .faces = 20 * 9 * 9};
   geometry::PipelineOptions o;
   o.faces = faces;
-  run_collision(state,
-                geometry::prepare_particle(geometry::random_particle(pd), "rock", o).tets);
+  run_collision(state, geometry::prepare_particle(geometry::random_particle(pd), "rock", o).tets);
 }
 BENCHMARK(BM_Collision)
     ->Arg(100)

@@ -141,7 +141,7 @@ struct World {
   // Largest centroid-to-face height of each surface tetrahedron, 3V/(4 A_min), in the reference
   // configuration, m: how deep a point can go into its potential before reaching the centroid.
   std::vector<double> surface_tet_height;
-  double penalty = 0;  // Pa
+  double penalty = 0;        // Pa
   double penalty_asked = 0;  // Pa, α·E or the given p, before limit_penalty lowered it
   double friction = 0;
   ContactLaw law = ContactLaw::potential;

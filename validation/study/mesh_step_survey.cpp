@@ -58,13 +58,12 @@ std::vector<MeshStep> mesh_steps(const StudyDef& def, std::size_t index,
       r.dt_contact = d.contact;
       r.dt_critical = d.critical;
       r.limited_by = d.limited_by;
-      r.dt_critical_study =
-          def.penalty_alpha
-              ? fdem::critical_step(fdem::make_world(particle_on_block(
-                                        p.tets, def, fdem::BodyKind::deformable,
-                                        p.props.equivalent_radius)))
-                    .critical
-              : d.critical;
+      r.dt_critical_study = def.penalty_alpha
+                                ? fdem::critical_step(fdem::make_world(particle_on_block(
+                                                          p.tets, def, fdem::BodyKind::deformable,
+                                                          p.props.equivalent_radius)))
+                                      .critical
+                                : d.critical;
     } catch (const std::exception& e) {
       r.error = e.what();
     }

@@ -24,10 +24,10 @@ struct MeshStep {
   long faces = 0;
   long tets = 0;
   double h = 0, c = 0;
-  double dt_element = 0;         // s, elements alone (no contact)
-  double dt_contact = 0;         // s, penalty contact alone, default α = 10
-  double dt_critical = 0;        // s, both together (the step a run scales), α = 10
-  std::string limited_by;        // "element" or "contact", α = 10
+  double dt_element = 0;   // s, elements alone (no contact)
+  double dt_contact = 0;   // s, penalty contact alone, default α = 10
+  double dt_critical = 0;  // s, both together (the step a run scales), α = 10
+  std::string limited_by;  // "element" or "contact", α = 10
   // A scene's default since issue 11: α = 10 lowered until the contact costs at most a factor 2
   // (fdem::limit_penalty): the step and the α it leaves.
   double dt_limited = 0, alpha_limited = 0;

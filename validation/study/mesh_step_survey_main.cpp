@@ -48,7 +48,8 @@ std::string table(const std::vector<MeshStep>& rows, const std::vector<long>& re
   md << "| N faces | meshes | failed | dt_element·c/h min | median | max | α = 10: dt·c/h min | "
         "median | max | contact factor min | median | max | default (limited): dt·c/h min | median "
         "| max | α left min | median | max |\n"
-     << "| ---: | ---: | ---: | ---: | ---: | ---: | ---: | ---: | ---: | ---: | ---: | ---: | ---: "
+     << "| ---: | ---: | ---: | ---: | ---: | ---: | ---: | ---: | ---: | ---: | ---: | ---: | "
+        "---: "
         "| ---: | ---: | ---: | ---: | ---: |\n";
   auto line = [&](const std::string& label, long n) {
     std::vector<double> e, c, k, l, a;
@@ -85,21 +86,23 @@ int run(int argc, char** argv) {
   std::vector<MeshStep> rows;
   std::ostringstream csv;
   csv << "particle,faces,tets,h,c,dt_element,dt_contact,dt_critical,limited_by,"
-         "dt_limited,alpha_limited,dt_critical_study_alpha,element_ratio,critical_ratio,contact_factor,"
+         "dt_limited,alpha_limited,dt_critical_study_alpha,element_ratio,critical_ratio,contact_"
+         "factor,"
          "limited_ratio,cpu_seconds,error\n";
   for (std::size_t i = 0; i < def.particles.size(); ++i) {
     for (const MeshStep& r : asperity::study::mesh_steps(def, i, def.resolutions)) {
-      std::cerr << r.particle << " " << r.faces << ": dt c/h " << r.critical_ratio()
-                << " (element " << r.element_ratio() << ", contact factor " << r.contact_factor()
-                << ", limited: dt c/h " << r.limited_ratio() << " alpha " << r.alpha_limited << ")" << (r.error.empty() ? "" : " FAILED: " + r.error) << "\n";
+      std::cerr << r.particle << " " << r.faces << ": dt c/h " << r.critical_ratio() << " (element "
+                << r.element_ratio() << ", contact factor " << r.contact_factor()
+                << ", limited: dt c/h " << r.limited_ratio() << " alpha " << r.alpha_limited << ")"
+                << (r.error.empty() ? "" : " FAILED: " + r.error) << "\n";
       csv << r.particle << "," << r.faces << "," << r.tets << "," << num(r.h, "%.6g") << ","
           << num(r.c, "%.6g") << "," << num(r.dt_element, "%.6g") << ","
           << num(r.dt_contact, "%.6g") << "," << num(r.dt_critical, "%.6g") << "," << r.limited_by
           << "," << num(r.dt_limited, "%.6g") << "," << num(r.alpha_limited, "%.4g") << ","
           << num(r.dt_critical_study, "%.6g") << "," << num(r.element_ratio(), "%.4g") << ","
           << num(r.critical_ratio(), "%.4g") << "," << num(r.contact_factor(), "%.4g") << ","
-          << num(r.limited_ratio(), "%.4g")
-          << "," << num(r.seconds, "%.3g") << ",\"" << r.error << "\"\n";
+          << num(r.limited_ratio(), "%.4g") << "," << num(r.seconds, "%.3g") << ",\"" << r.error
+          << "\"\n";
       rows.push_back(r);
     }
   }
