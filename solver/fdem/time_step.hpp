@@ -51,7 +51,7 @@ CriticalStep critical_step(const World& world);
 //
 // Why (issue 11, item 5): at α = 10 the penalty layer's stiffness per area, p/h with h a quarter
 // of the surface tetrahedron's height, is 40 E/H, about 40× its element's own, so the contact
-// alone set the step 1.9–3.9× below the element limit on the study's meshes (reports/fem/
+// alone set the step 1.1–4.3× below the element limit on the study's meshes (reports/fem/
 // mesh_step.md; a global Lanczos estimate of the same all-faces system agrees within 10 %, so
 // the bound is not what is loose). The step then follows the penalty, not the element size.
 // Lowering p to the factor costs penetration compliance: E/p of the elements' own shortening

@@ -19,9 +19,9 @@ namespace {
 //
 // What holds and is asserted: every mesh is made (a mesher failure would be this row's error),
 // and at a scene's default penalty the contact pulls the predicted step at most 2× below the
-// elements' limit (fdem::limit_penalty; at α = 10 as asked it was 1.9–4.1× on the full set).
-// What does not hold and is therefore not asserted: dt_element·c/h ≥ 1/3 (the full set: 0.07 to
-// 3.1, reports/fem/mesh_step.md): surface slivers and short simplified edges still set the
+// elements' limit (fdem::limit_penalty; at α = 10 as asked it was 1.1–4.3× on the full set).
+// What does not hold and is therefore not asserted: dt_element·c/h ≥ 1/3 (the full set: 0.04 to
+// 3.0, reports/fem/mesh_step.md): surface slivers and short simplified edges still set the
 // element step on some meshes; the mesher does not repair them yet.
 TEST(MeshStep, ContactCostsAtMostTwiceTheElementStep) {
   const StudyDef def = load_study(std::string(ASPERITY_SOURCE_DIR) + "/data/study/full.json");
