@@ -1,10 +1,14 @@
 # FEM/DEM core: internal-force kernel (tet updates/s), Munjiza contact kernel (pair evaluations/s),
 # and whole particle-on-block collisions at 100–1000 surface triangles (with the geometry
-# pipeline).
+# pipeline), for the benchmark's particle and for each particle of the generated set
+# (`--set-particles=all`; reports/fem/collision_cost.md).
 asperity_benchmark(bench_fem ${CMAKE_CURRENT_LIST_DIR}/fem_bench.cpp)
 target_link_libraries(bench_fem PRIVATE asperity_fdem)
 target_include_directories(bench_fem PRIVATE ${ASPERITY_SOURCE_DIR}/tests/fdem)
 if(TARGET asperity_geometry)
   target_link_libraries(bench_fem PRIVATE asperity_geometry)
-  target_compile_definitions(bench_fem PRIVATE ASPERITY_HAVE_GEOMETRY=1)
+  target_link_libraries(bench_fem PRIVATE asperity_io)
+  # BM_CollisionSet reads the particle set (data/particles/set.json) from the source tree.
+  target_compile_definitions(bench_fem PRIVATE ASPERITY_HAVE_GEOMETRY=1
+                                               ASPERITY_SOURCE_DIR="${ASPERITY_SOURCE_DIR}")
 endif()

@@ -18,6 +18,7 @@
 #include "core/error.hpp"
 #include "core/ticks.hpp"
 #include "fdem/broad_phase.hpp"
+#include "fdem/time_step.hpp"
 
 namespace asperity::fdem {
 namespace {
@@ -654,6 +655,10 @@ World make_world(const WorldDef& def) {
   index_faces_by_tet(w, surface.face_owner);
   w.skin = contact_skin(w, surface.faces);
   set_face_stiffness(w, surface.faces);
+  w.penalty_asked = w.penalty;
+  if (w.law == ContactLaw::potential && def.contact.max_contact_factor > 0) {
+    limit_penalty(w, def.contact.max_contact_factor);
+  }
 
   w.x_initial = w.x;
   rebuild_pairs(w);

@@ -59,6 +59,11 @@ struct ContactDef {
   double alpha = 10;
   double penalty = 0;   // Pa, overrides alpha when > 0
   double friction = 0;  // Coulomb μ
+  // > 0: the penalty α·E is lowered, where needed, until the penalty contact pulls no deformable
+  // body's predicted step more than this factor below its elements' own limit (limit_penalty,
+  // fdem/time_step.hpp; issue 11). Scenes that give neither penalty nor penalty_alpha get 2
+  // (run/run_fdem.cpp); 0 (here the default): p as asked.
+  double max_contact_factor = 0;
 };
 
 struct WorldDef {
@@ -138,7 +143,8 @@ struct World {
   // Largest centroid-to-face height of each surface tetrahedron, 3V/(4 A_min), in the reference
   // configuration, m: how deep a point can go into its potential before reaching the centroid.
   std::vector<double> surface_tet_height;
-  double penalty = 0;  // Pa
+  double penalty = 0;        // Pa
+  double penalty_asked = 0;  // Pa, α·E or the given p, before limit_penalty lowered it
   double friction = 0;
   ContactLaw law = ContactLaw::potential;
   double kv = 0;  // N/m³

@@ -400,6 +400,78 @@ CriticalStep volume_critical_step(const World& w) {
 }
 }  // namespace
 
+namespace {
+
+// Deformable body `b` with its face springs scaled by s: the damped step of elements and
+// contact together, the smaller of the mass-split bound and Weyl's sum (critical_step).
+struct BodySteps {
+  fem::ElementStep element;
+  double gershgorin = 0;  // max over nodes of Σ (k_f/3) / m
+  std::vector<fem::ElementExtraStiffness> springs;
+};
+BodySteps body_steps(const World& w, int b, const std::vector<double>& k_row) {
+  const Body& body = w.bodies[static_cast<std::size_t>(b)];
+  const fem::TetElements& e = w.elements[body.elements];
+  BodySteps out{.element = fem::element_critical_step(e), .springs = face_springs(w, b)};
+  for (int i = body.node_begin; i < body.node_end; ++i) {
+    if (w.mass[i] > 0) out.gershgorin = std::max(out.gershgorin, k_row[i] / w.mass[i]);
+  }
+  return out;
+}
+double combined_omega(const World& w, int b, const BodySteps& s, double scale) {
+  const fem::TetElements& e = w.elements[w.bodies[static_cast<std::size_t>(b)].elements];
+  std::vector<fem::ElementExtraStiffness> springs = s.springs;
+  for (fem::ElementExtraStiffness& x : springs) x.k *= scale;
+  const double weyl2 = s.element.omega_max * s.element.omega_max + scale * s.gershgorin;
+  const fem::ElementStep both = fem::element_critical_step(e, springs);
+  return std::sqrt(std::min(weyl2, both.omega_max * both.omega_max));
+}
+std::vector<double> face_rows(const World& w) {
+  std::vector<double> k_row(w.node_count(), 0.0);
+  for (Eigen::Index f = 0; f < w.face_nodes.cols(); ++f) {
+    for (int i = 0; i < 3; ++i) k_row[w.face_nodes(i, f)] += w.face_stiffness[f] / 3.0;
+  }
+  return k_row;
+}
+
+}  // namespace
+
+double limit_penalty(World& w, double factor) {
+  const std::vector<double> k_row = face_rows(w);
+  double scale = 1;
+  for (std::size_t b = 0; b < w.bodies.size(); ++b) {
+    if (w.bodies[b].kind != BodyKind::deformable) continue;
+    const int bi = static_cast<int>(b);
+    const BodySteps s = body_steps(w, bi, k_row);
+    // Undamped: ω(x)/ω_element − factor, so that a body's damping_ratio does not move its penalty.
+    auto excess = [&](double x) {
+      return combined_omega(w, bi, s, x) / s.element.omega_max - factor;
+    };
+    double lo = 0, hi = 1, f_lo = 1 - factor, f_hi = excess(1);
+    if (f_hi <= 0) continue;
+    int side = 0;  // Illinois: halve the kept end's value when the same end is kept twice
+    for (int it = 0; it < 6; ++it) {
+      const double x = lo - f_lo * (hi - lo) / (f_hi - f_lo);
+      const double fx = excess(x);
+      if (fx <= 0) {
+        lo = x, f_lo = fx;
+        if (side == -1) f_hi *= 0.5;
+        side = -1;
+      } else {
+        hi = x, f_hi = fx;
+        if (side == 1) f_lo *= 0.5;
+        side = 1;
+      }
+    }
+    scale = std::min(scale, lo);
+  }
+  if (scale < 1) {
+    w.penalty *= scale;
+    for (double& k : w.face_stiffness) k *= scale;
+  }
+  return scale;
+}
+
 CriticalStep critical_step(const World& w) {
   if (w.law != ContactLaw::potential) return volume_critical_step(w);
   CriticalStep out;

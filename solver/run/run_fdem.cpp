@@ -155,6 +155,9 @@ Built build(const scene::SceneDef& s) {
                                                                : fdem::ContactLaw::potential);
   out.def.contact.kv = s.contact.kv.value_or(0.0);
   if (s.contact.penalty_alpha) out.def.contact.alpha = *s.contact.penalty_alpha;
+  // The default penalty (neither penalty nor penalty_alpha given) may cost the step at most a
+  // factor 2 below the elements' limit (fdem::limit_penalty, issue 11); a given one is kept.
+  if (!s.contact.penalty && !s.contact.penalty_alpha) out.def.contact.max_contact_factor = 2;
   // Coulomb μ: the scene's, else the smallest of the bodies' materials (as pair_friction does
   // for a pair).
   out.def.contact.friction = s.contact.friction.value_or(friction);
@@ -342,7 +345,10 @@ RunResult run_fdem(const scene::SceneDef& s, const RunOptions& options) {
   j["dt_contact"] = std::isfinite(crit.contact) ? J(crit.contact) : J();
   if (w.law == fdem::ContactLaw::potential) {
     j["penalty"] = w.penalty;
-    j["penalty_alpha"] = s.contact.penalty ? J() : J(built.def.contact.alpha);
+    // α actually used (p/E: below the default 10 when limit_penalty lowered it) and the α asked.
+    const double used = built.def.contact.alpha * w.penalty / w.penalty_asked;
+    j["penalty_alpha"] = s.contact.penalty ? J() : J(used);
+    j["penalty_alpha_asked"] = s.contact.penalty ? J() : J(built.def.contact.alpha);
   } else if (w.law == fdem::ContactLaw::volume_linear) {
     j["kv"] = w.kv;
   }

@@ -202,6 +202,35 @@ bad "mesh --scale inf" "--scale: must be a finite number" \
   mesh "$src/data/meshes/particle-seed3-320.off" --scale inf --out "$out/m"
 bad "study --jobs -3" "--jobs: must be a whole number" study "$src/data/study/default.json" -j -3 --out "$out/s"
 
+# --- 11. element_size (issue 11): ≤ 0, not a number, larger than the particle, or more than
+# ~20 M estimated tetrahedra, in a scene and on `mesh --element-size`; the message names the
+# file, the key and the value (and the estimated count where that is the problem), before any
+# meshing
+/usr/bin/python3 - "$src/examples/rock-drop-fem.json" "$src/data/meshes/particle-seed3-320.off" "$in" <<'PY'
+import json, sys
+s = json.load(open(sys.argv[1]))
+s["bodies"][0]["shape"]["file"] = sys.argv[2]
+for tag, v in [("zero", 0), ("negative", -1e-3), ("string", "nan"), ("large", 10.0), ("tiny", 1e-5)]:
+    s["bodies"][0]["shape"]["element_size"] = v
+    json.dump(s, open(f"{sys.argv[3]}/es-{tag}.json", "w"))
+PY
+bad "element_size 0" "es-zero.json: bodies\[0\]\.shape\.element_size: must be > 0 \(got 0\)" \
+  run "$in/es-zero.json" --out "$out/r"
+bad "element_size < 0" "es-negative.json: bodies\[0\]\.shape\.element_size: must be > 0 \(got -0\.001\)" \
+  run "$in/es-negative.json" --out "$out/r"
+bad "element_size not a number" "es-string.json: bodies\[0\]\.shape\.element_size: must be a number \(got \"nan\"\)" \
+  run "$in/es-string.json" --out "$out/r"
+bad "element_size larger than the particle" "es-large.json: .*shape\.element_size: 10 m is larger than the particle \(0\.06[0-9]* m across\)" \
+  run "$in/es-large.json" --out "$out/r"
+bad "element_size of too many tetrahedra" "es-tiny.json: .*shape\.element_size: 1e-05 m would make about [0-9]+ M tetrahedra \(limit 20 M\)" \
+  run "$in/es-tiny.json" --out "$out/r"
+for v in 0 -1 nan inf; do
+  bad "mesh --element-size $v" "particle-seed3-320\.off: --element-size: .*(not a positive length|larger than)" \
+    mesh "$src/data/meshes/particle-seed3-320.off" --faces 100 --element-size "$v" --out "$out/m"
+done
+bad "mesh --element-size of too many tetrahedra" "--element-size: 1e-05 m would make about [0-9]+ M tetrahedra \(limit 20 M\)" \
+  mesh "$src/data/meshes/particle-seed3-320.off" --faces 100 --element-size 1e-5 --out "$out/m"
+
 # --- 5. Mesh headers checked against the file's size before anything is allocated
 printf 'OFF\n2000000000 1 0\n0 0 0\n' > "$in/huge-header.off"
 bad "OFF declaring 2e9 vertices" "huge-header.off: OFF header declares 2000000000 vertices" \

@@ -50,6 +50,46 @@ TEST(DampingRatio, ShortensTheElementStepByTheDampedFactor) {
   EXPECT_GT(damped.summary["bodies"][0]["damping"].get<double>(), 0);
 }
 
+// Issue 11, item 4: damping the highest element modes (ξ = 0.1 there, ξ ω/ω_max below: the
+// contact's own modes are far below ω_max) must leave the impact itself alone. A 250-triangle
+// drop at 2 m/s (no test tunes on it; the stability gate and the other tests use 100 triangles):
+// impulse and contact duration within 0.5 % of the undamped run (the issue's bound; measured
+// −0.02 % and +0.14 %), while the damping does dissipate (restitution lower, so the test sees
+// the damping at all). The ringing is not what it removes: raw over filtered peak stays 0.33 %,
+// at modes far below ω_max.
+TEST(DampingRatio, LeavesImpulseAndDurationWithinHalfAPercent) {
+  auto drop = [](const std::string& name, const std::string& extra) {
+    const std::string mesh =
+        std::string(ASPERITY_SOURCE_DIR) + "/data/meshes/particle-seed3-320.off";
+    const std::string text = R"({"name": ")" + name + R"(", "duration": 5e-4,
+      "materials": {"rock": {"density": 2650, "young": 5e10, "poisson": 0.25}},
+      "bodies": [
+        {"name": "rock", "material": "rock", "model": "fem", "shape": {"type": "mesh",
+         "file": ")" + mesh + R"(", "faces": 250}, "position": [0, 0, 0.0196],
+         "velocity": [0, 0, -2])" +
+                             extra + R"(},
+        {"name": "slab", "material": "rock",
+         "shape": {"type": "box", "min": [-0.05, -0.05, -0.02], "max": [0.05, 0.05, 0]}}],
+      "contact": {"law": "potential"},
+      "record": {"force_on": "rock", "end_after_separation": 2e-5}})";
+    const fs::path dir = fs::temp_directory_path() / "asperity_fdem_damping";
+    fs::create_directories(dir);
+    const fs::path file = dir / (name + ".json");
+    std::ofstream(file) << text;
+    return run_scene(scene::load_scene(file), RunOptions{.keep_rows = false}).summary;
+  };
+  const auto plain = drop("drop-plain", "");
+  const auto damped = drop("drop-damped", R"(, "damping_ratio": 0.1)");
+  ASSERT_EQ(plain["status"], "ok");
+  ASSERT_EQ(damped["status"], "ok");
+  const auto rel = [&](const char* key) {
+    return damped[key].get<double>() / plain[key].get<double>() - 1;
+  };
+  EXPECT_LT(std::abs(rel("impulse")), 0.005);
+  EXPECT_LT(std::abs(rel("contact_duration")), 0.005);
+  EXPECT_LT(damped["restitution"].get<double>(), plain["restitution"].get<double>());
+}
+
 TEST(DampingRatio, RigidBodyRefusesIt) {
   try {
     scene::load_scene(particle_scene("rigid-damped", "rigid", R"(, "damping_ratio": 0.1)"));

@@ -23,16 +23,14 @@
 #include "core/clock.hpp"
 #include "core/error.hpp"
 #include "fdem/fdem_world.hpp"
-#include "fdem/structured_mesh.hpp"
 #include "fdem/time_step.hpp"
 #include "geometry/mesh_pipeline.hpp"
-#include "geometry/random_particle.hpp"
-#include "geometry/splitmix64.hpp"
 #include "geometry/write_mesh.hpp"
 #include "io/atomic_file.hpp"
 #include "io/json_file.hpp"
 #include "run/run_scene.hpp"
 #include "scene/scene.hpp"
+#include "study/study_meshes.hpp"
 
 namespace asperity::study {
 namespace fs = std::filesystem;
@@ -46,23 +44,6 @@ std::string read_text(const fs::path& file) {
   std::ostringstream s;
   s << in.rdbuf();
   return s.str();
-}
-
-Mat3 orientation_matrix(const StudyDef& def, std::size_t index) {
-  if (def.random_orientation) {
-    // Uniform random rotation (Shoemake 1992, "Uniform random rotations", Graphics Gems III):
-    // a unit quaternion from three uniforms; seeded by the particle's place in the study.
-    geometry::SplitMix64 rng{0x5eedULL + 7919ULL * index};
-    const double u1 = rng.uniform(), u2 = rng.uniform(), u3 = rng.uniform();
-    const double a = std::sqrt(1 - u1), b = std::sqrt(u1), tau = 2 * std::numbers::pi;
-    const Quat q(b * std::cos(tau * u3), a * std::sin(tau * u2), a * std::cos(tau * u2),
-                 b * std::sin(tau * u3));
-    return q.normalized().toRotationMatrix();
-  }
-  const Vec3 r = def.orientation_deg * (std::numbers::pi / 180);
-  return (Eigen::AngleAxisd(r.z(), Vec3::UnitZ()) * Eigen::AngleAxisd(r.y(), Vec3::UnitY()) *
-          Eigen::AngleAxisd(r.x(), Vec3::UnitX()))
-      .toRotationMatrix();
 }
 
 // What makes a particle's source surface: the meshes of an earlier run are reused only when it
@@ -86,37 +67,6 @@ std::string source_tag(const StudyDef& def, const ParticleSource& p, std::size_t
       << def.orientation_deg.z();
   }
   return s.str();
-}
-
-// The particle's source surface: centroid at the origin, scaled to particle_size (when given),
-// rotated to the study's orientation.
-SurfaceMesh make_source(const StudyDef& def, const ParticleSource& p, std::size_t index) {
-  SurfaceMesh m;
-  if (p.file.empty()) {
-    geometry::ParticleDef d{.seed = p.seed,
-                            .size = p.size,
-                            .elongation = p.elongation,
-                            .flatness = p.flatness,
-                            .angularity = p.angularity,
-                            .roughness = p.roughness,
-                            .faces = p.faces};
-    if (const std::string problem = geometry::particle_def_problem(d); !problem.empty()) {
-      throw InputError(def.file.string() + ": particles: \"" + p.name + "\": " + problem);
-    }
-    m = geometry::random_particle(d);
-  } else {
-    geometry::PipelineOptions o;
-    o.read.scale = p.scale;
-    o.tetrahedralize = false;
-    m = geometry::prepare_particle(p.file, o).surface;
-  }
-  const geometry::MassProperties props = geometry::mass_properties(m);
-  const double s = def.particle_size ? *def.particle_size / (2 * props.equivalent_radius) : 1.0;
-  const Mat3 rot = orientation_matrix(def, index);
-  for (Eigen::Index i = 0; i < m.vertices.cols(); ++i) {
-    m.vertices.col(i) = rot * (s * (m.vertices.col(i) - props.centroid));
-  }
-  return m;
 }
 
 std::string clock_text(double s) {
@@ -296,22 +246,7 @@ void thin_rows(run::RunResult& r, int rows) {
 // Predicted critical step of the particle (fem or rigid) above the block, times the runners'
 // default safety (run/step_policy.hpp): only used to keep about `rows` rows per case.
 double estimated_dt(const TetMesh& tets, const StudyDef& def, fdem::BodyKind kind, double radius) {
-  fdem::WorldDef w;
-  TetMesh m = tets;
-  m.nodes.row(2).array() += def.gap - m.nodes.row(2).minCoeff();
-  w.bodies.push_back({.name = "particle",
-                      .kind = kind,
-                      .mesh = m,
-                      .material = def.material,
-                      .velocity = Vec3(0, 0, -def.speed)});
-  const double half = 2 * radius + 0.01;
-  w.bodies.push_back(
-      {.name = "block",
-       .kind = fdem::BodyKind::fixed,
-       .mesh = fdem::box_mesh(Vec3(-half, -half, -half), Vec3(half, half, 0), 1, 1, 1),
-       .material = def.block_material});
-  if (def.penalty_alpha) w.contact.alpha = *def.penalty_alpha;
-  const fdem::World world = fdem::make_world(w);
+  const fdem::World world = fdem::make_world(particle_on_block(tets, def, kind, radius));
   return run::default_safety(kind == fdem::BodyKind::rigid ? run::StepRegime::fdem_rigid
                                                            : run::StepRegime::fdem_deformable) *
          fdem::critical_step(world).critical;
@@ -448,7 +383,7 @@ int thread_count(const StudyDef& def, const StudyRunOptions& options) {
 std::vector<SurfaceMesh> make_sources(const StudyDef& def,
                                       const std::vector<std::size_t>& particles) {
   std::vector<SurfaceMesh> sources(def.particles.size());
-  for (std::size_t i : particles) sources[i] = make_source(def, def.particles[i], i);
+  for (std::size_t i : particles) sources[i] = particle_source(def, i);
   return sources;
 }
 
@@ -489,10 +424,7 @@ cluster::TaskReport make_mesh(const StudyDef& def, const fs::path& out, const Me
         return {.skipped = true, .note = label + " (kept)"};
       }
     }
-    geometry::PipelineOptions o;
-    o.faces = t.faces;
-    o.tetrahedralize = true;
-    const geometry::PreparedParticle prepared = geometry::prepare_particle(source, p.name, o);
+    const geometry::PreparedParticle prepared = particle_mesh(source, p.name, t.faces);
     fs::create_directories(dir);
     fs::remove(report);
     geometry::write_surface_mesh(dir / "surface.off", prepared.surface);

@@ -1,0 +1,51 @@
+#!/usr/bin/env python3
+"""The cost of the bench_fem collision over the particle set (issue 11, item 6), from the console
+output of `bench_fem --benchmark_filter=CollisionSet --set-particles=all > LOG` (read line by
+line, so a run stopped part-way still gives the particles it finished): per resolution the
+median and worst CPU seconds, and per particle the exponent log(cpu_1000 / cpu_100) / log(10).
+Prints a Markdown table.
+Usage: collision_cost_table.py LOG"""
+import math
+import re
+import statistics
+import sys
+
+
+def main(path):
+    runs = {}
+    units = {"": 1, "k": 1e3, "m": 1e-3, "u": 1e-6, "n": 1e-9}
+    for line in open(path):
+        m = re.match(r"BM_CollisionSet/(\S+)/(\d+)/\S+\s.*?((?:\w+=\S+ ?)+)$", line.strip())
+        if not m:
+            continue
+        counters = {}
+        for kv in m.group(3).split():
+            k, v = kv.split("=")
+            scale = units.get(v[-1], None)
+            counters[k] = float(v[:-1]) * scale if scale and v[-1].isalpha() else float(v)
+        runs.setdefault(m.group(1), {})[int(m.group(2))] = counters
+    faces = sorted({n for r in runs.values() for n in r})
+    print(f"{len(runs)} particles.\n")
+    print("| N faces | particles | CPU median (s) | CPU worst (s) | worst particle | steps median | dt median (s) | tets median |")
+    print("| ---: | ---: | ---: | ---: | --- | ---: | ---: | ---: |")
+    for n in faces:
+        rows = [(p, r[n]) for p, r in runs.items() if n in r]
+        cpu = [b["cpu_s"] for _, b in rows]
+        worst = max(rows, key=lambda x: x[1]["cpu_s"])
+        print(f"| {n} | {len(rows)} | {statistics.median(cpu):.3g} | {worst[1]['cpu_s']:.3g} | "
+              f"{worst[0]} | {statistics.median([b['steps'] for _, b in rows]):.0f} | "
+              f"{statistics.median([b['dt'] for _, b in rows]):.3g} | "
+              f"{statistics.median([b['tets'] for _, b in rows]):.0f} |")
+    if 100 in faces and 1000 in faces:
+        k = [(p, math.log(r[1000]["cpu_s"] / r[100]["cpu_s"]) / math.log(10))
+             for p, r in runs.items() if 100 in r and 1000 in r]
+        e = [x for _, x in k]
+        hi = max(k, key=lambda x: x[1])
+        print(f"\nExponent 100 → 1000 over {len(k)} particles: median {statistics.median(e):.2f}, "
+              f"min {min(e):.2f}, max {hi[1]:.2f} ({hi[0]}).")
+        over = [p for p, r in runs.items() if 1000 in r and r[1000]["cpu_s"] > 2]
+        print(f"Over 2 s at 1000 faces: {len(over)} ({', '.join(sorted(over)) or 'none'}).")
+
+
+if __name__ == "__main__":
+    main(sys.argv[1])

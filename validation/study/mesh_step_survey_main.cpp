@@ -1,0 +1,126 @@
+// mesh_step_survey STUDY.json --out DIR: every particle of the study meshed at every resolution
+// and its predicted critical step set against h/c (study/mesh_step_survey.hpp); writes
+// DIR/mesh_step.csv (one row per mesh) and DIR/mesh_step.md (the distribution). Makes
+// reports/fem/mesh_step.md from data/study/full.json.
+#include <algorithm>
+#include <cstdio>
+#include <filesystem>
+#include <iostream>
+#include <sstream>
+#include <string>
+#include <vector>
+
+#include "core/error.hpp"
+#include "io/atomic_file.hpp"
+#include "study/mesh_step_survey.hpp"
+#include "study/study_def.hpp"
+
+namespace fs = std::filesystem;
+using asperity::study::MeshStep;
+
+namespace {
+
+std::string num(double v, const char* f = "%.3g") {
+  char b[32];
+  std::snprintf(b, sizeof b, f, v);
+  return b;
+}
+
+// min, median, max of `v` (sorted copy; the median of an even count is the lower middle's and
+// upper middle's mean).
+struct Spread {
+  double min = 0, median = 0, max = 0;
+};
+Spread spread(std::vector<double> v) {
+  if (v.empty()) return {};
+  std::sort(v.begin(), v.end());
+  const std::size_t n = v.size();
+  return {v.front(), n % 2 ? v[n / 2] : 0.5 * (v[n / 2 - 1] + v[n / 2]), v.back()};
+}
+
+std::string spread_cells(const std::vector<double>& v) {
+  const Spread s = spread(v);
+  return num(s.min) + " | " + num(s.median) + " | " + num(s.max);
+}
+
+std::string table(const std::vector<MeshStep>& rows, const std::vector<long>& resolutions) {
+  std::ostringstream md;
+  md << "| N faces | meshes | failed | dt_element·c/h min | median | max | α = 10: dt·c/h min | "
+        "median | max | contact factor min | median | max | default (limited): dt·c/h min | median "
+        "| max | α left min | median | max |\n"
+     << "| ---: | ---: | ---: | ---: | ---: | ---: | ---: | ---: | ---: | ---: | ---: | ---: | "
+        "---: "
+        "| ---: | ---: | ---: | ---: | ---: |\n";
+  auto line = [&](const std::string& label, long n) {
+    std::vector<double> e, c, k, l, a;
+    int failed = 0;
+    for (const MeshStep& r : rows) {
+      if (n > 0 && r.faces != n) continue;
+      if (!r.error.empty()) {
+        ++failed;
+        continue;
+      }
+      e.push_back(r.element_ratio());
+      c.push_back(r.critical_ratio());
+      k.push_back(r.contact_factor());
+      l.push_back(r.limited_ratio());
+      a.push_back(r.alpha_limited);
+    }
+    md << "| " << label << " | " << e.size() + static_cast<std::size_t>(failed) << " | " << failed
+       << " | " << spread_cells(e) << " | " << spread_cells(c) << " | " << spread_cells(k) << " | "
+       << spread_cells(l) << " | " << spread_cells(a) << " |\n";
+  };
+  for (const long n : resolutions) line(std::to_string(n), n);
+  line("all", 0);
+  return md.str();
+}
+
+int run(int argc, char** argv) {
+  if (argc != 4 || std::string(argv[2]) != "--out") {
+    std::cerr << "usage: mesh_step_survey STUDY.json --out DIR\n";
+    return 2;
+  }
+  const asperity::study::StudyDef def = asperity::study::load_study(argv[1]);
+  const fs::path out = argv[3];
+  fs::create_directories(out);
+  std::vector<MeshStep> rows;
+  std::ostringstream csv;
+  csv << "particle,faces,tets,h,c,dt_element,dt_contact,dt_critical,limited_by,"
+         "dt_limited,alpha_limited,dt_critical_study_alpha,element_ratio,critical_ratio,contact_"
+         "factor,"
+         "limited_ratio,cpu_seconds,error\n";
+  for (std::size_t i = 0; i < def.particles.size(); ++i) {
+    for (const MeshStep& r : asperity::study::mesh_steps(def, i, def.resolutions)) {
+      std::cerr << r.particle << " " << r.faces << ": dt c/h " << r.critical_ratio() << " (element "
+                << r.element_ratio() << ", contact factor " << r.contact_factor()
+                << ", limited: dt c/h " << r.limited_ratio() << " alpha " << r.alpha_limited << ")"
+                << (r.error.empty() ? "" : " FAILED: " + r.error) << "\n";
+      csv << r.particle << "," << r.faces << "," << r.tets << "," << num(r.h, "%.6g") << ","
+          << num(r.c, "%.6g") << "," << num(r.dt_element, "%.6g") << ","
+          << num(r.dt_contact, "%.6g") << "," << num(r.dt_critical, "%.6g") << "," << r.limited_by
+          << "," << num(r.dt_limited, "%.6g") << "," << num(r.alpha_limited, "%.4g") << ","
+          << num(r.dt_critical_study, "%.6g") << "," << num(r.element_ratio(), "%.4g") << ","
+          << num(r.critical_ratio(), "%.4g") << "," << num(r.contact_factor(), "%.4g") << ","
+          << num(r.limited_ratio(), "%.4g") << "," << num(r.seconds, "%.3g") << ",\"" << r.error
+          << "\"\n";
+      rows.push_back(r);
+    }
+  }
+  asperity::io::write_atomically(out / "mesh_step.csv", csv.str());
+  asperity::io::write_atomically(out / "mesh_step.md", table(rows, def.resolutions));
+  return 0;
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  try {
+    return run(argc, argv);
+  } catch (const asperity::InputError& e) {
+    std::cerr << e.what() << "\n";
+    return 2;
+  } catch (const std::exception& e) {
+    std::cerr << "mesh_step_survey: " << e.what() << "\n";
+    return 1;
+  }
+}
