@@ -155,9 +155,9 @@ Built build(const scene::SceneDef& s) {
                                                                : fdem::ContactLaw::potential);
   out.def.contact.kv = s.contact.kv.value_or(0.0);
   if (s.contact.penalty_alpha) out.def.contact.alpha = *s.contact.penalty_alpha;
-  // The default penalty (neither penalty nor penalty_alpha given) may cost the step at most a
-  // factor 2 below the elements' limit (fdem::limit_penalty, issue 11); a given one is kept.
-  if (!s.contact.penalty && !s.contact.penalty_alpha) out.def.contact.max_contact_factor = 2;
+  // The default penalty stays α = 10 even where it sets the step: lowering it until the contact
+  // costs at most 2× (fdem::limit_penalty, issue 11) costs up to 24 % of the peak force
+  // (docs/physics.md, "Time step"), too much to trade silently for speed.
   // Coulomb μ: the scene's, else the smallest of the bodies' materials (as pair_friction does
   // for a pair).
   out.def.contact.friction = s.contact.friction.value_or(friction);
