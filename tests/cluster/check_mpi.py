@@ -74,6 +74,10 @@ with open(study_file) as f:
     n_cases = 0
     spec = json.load(f)
     n_cases = spec["particles"]["count"] * len(spec["resolutions"]) * len(spec["models"]) * len(spec["placements"])
+    # fem's refined element sizes (issue 12): a case per size, refined resolution and placement
+    ref = spec.get("refinement", {})
+    n_cases += spec["particles"]["count"] * len(ref.get("sizes", [])) * \
+        len(ref.get("resolutions", spec["resolutions"])) * len(ref.get("placements", spec["placements"]))
 
 # 1. The reference: one process, two threads.
 one = os.path.join(work, "one")

@@ -240,7 +240,7 @@ StudyDef load_study(const fs::path& file) {
         const Json& v = list.at(i).value();
         const std::string m = v.is_string() ? v.get<std::string>() : "";
         const auto it = std::find_if(s.placements.begin(), s.placements.end(),
-                                     [&](Placement p) { return m == placement_name(p); });
+                                     [&](Placement q) { return m == placement_name(q); });
         if (it == s.placements.end())
           list.at(i).fail("", "must be one of the study's placements (got " + io::echo(v) + ")");
         s.refinement.placements.push_back(*it);
