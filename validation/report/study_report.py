@@ -665,8 +665,8 @@ def main():
     cpu_chart(a.out, cases, fits, doc)
 
     doc.h(2, "Accuracy against cost")
-    doc.p("Median over the particles of |error| against the finest fem mesh, and its 90th percentile, against the "
-          "median CPU time of each model and resolution.")
+    doc.p("Median over the particles of |error| against the converged fem reference, and its 90th percentile, "
+          "against the median CPU time of each model, resolution and element size.")
     accuracy_cost_chart(a.out, candidates, uncertainty, doc)
     doc.table(["placement", "model", "resolution", "h/R", "particles", "peak err median", "peak err p90",
                "impulse err median", "impulse err p90", "duration err median", "arrival shift median",
