@@ -5,20 +5,11 @@
 # interrupted run or study leaves nothing that looks complete and no lock.
 # Usage: hostile.sh ASPERITY_BINARY SOURCE_DIR
 set -u
-bin=$(realpath "$1")
-src=$(cd "$2" && pwd)
-work=$(mktemp -d)
-trap 'rm -rf "$work"' EXIT
+source "$(dirname "$0")/checks.sh"
 in=$work/in    # inputs, made before each check
 out=$work/o    # every --out lies under here; a bad input must leave no folder
 cwd=$work/cwd  # the program's working folder: nothing may appear in it
 mkdir -p "$in" "$out" "$cwd"
-passed=0
-failed=0
-check() {  # check NAME CONDITION...
-  local name=$1; shift
-  if "$@"; then passed=$((passed + 1)); else failed=$((failed + 1)); echo "FAIL: $name"; fi
-}
 # Memory cap for one run (bounded memory): 2 GiB of address space. AddressSanitizer reserves
 # terabytes of address space up front, so a sanitized binary runs uncapped (its own checks apply).
 if ldd "$bin" 2>/dev/null | grep -q libasan; then mem_kb=unlimited; else mem_kb=$((2 * 1024 * 1024)); fi
@@ -282,5 +273,4 @@ check "SIGINT removes study.lock" test ! -e "$work/study-int/study.lock"
 check "SIGINT: no study_summary.json" test ! -e "$work/study-int/study_summary.json"
 check "SIGINT: no *.partial-* file" test -z "$(find "$work/study-int" -name '*.partial-*')"
 
-echo "$passed passed, $failed failed"
-test "$failed" -eq 0
+report_checks
