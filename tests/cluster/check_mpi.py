@@ -166,6 +166,8 @@ bad("--shard 3/2", [study_file, "--out", os.path.join(work, "bad"), "--shard", "
 bad("--shard 0/0", [study_file, "--out", os.path.join(work, "bad"), "--shard", "0/0"], ["--shard", "0/0"], os.path.join(work, "bad"))
 other = os.path.join(work, "other.json")
 spec["resolutions"] = [100, 500]
+if "refinement" in spec:  # its resolutions must be the study's (else refused before the folder is read)
+    spec["refinement"]["resolutions"] = [500]
 spec["particles"]["set"] = os.path.join(os.path.dirname(os.path.abspath(study_file)), spec["particles"]["set"])
 spec["name"] = "smoke"
 with open(other, "w") as f:
