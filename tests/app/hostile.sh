@@ -109,6 +109,44 @@ bad "validate on a scene" "good.json: this is a scene, not a validation case.*as
   validate "$in/good.json" --out "$out/v"
 bad "unknown command" "unknown command \"bogus\"" bogus
 
+# --- 10. The volume laws of rigid polyhedra (issue 13): volume-linear without kv or with kv <= 0 in
+# run and crosscheck; friction without its tangential stiffness kt; a non-convex body and volume-hertz to the YADE cross-check (YADE's Polyhedra
+# is the convex hull of its vertices; volume-hertz has no YADE law).
+poly_case=$src/validation/cases/polyhedra/volume-linear-cube-face-straight.json
+/usr/bin/python3 -c "
+import json, os, sys
+s = json.load(open(sys.argv[1]))['scene']
+mesh = s['bodies'][0]['shape']
+mesh['file'] = os.path.normpath(os.path.join(os.path.dirname(sys.argv[1]), mesh['file']))
+json.dump(s, open(sys.argv[2], 'w'))" "$poly_case" "$in/poly.json"
+poly_variant() {  # poly_variant NAME PYTHON-STATEMENT: $in/NAME.json = poly.json with s changed
+  /usr/bin/python3 - "$in/poly.json" "$in/$1.json" "$2" <<'PY'
+import json, sys
+s = json.load(open(sys.argv[1]))
+exec(sys.argv[3])
+json.dump(s, open(sys.argv[2], "w"))
+PY
+}
+poly_variant nokv "del s['contact']['kv']"
+bad "volume-linear without kv" "nokv.json: contact\.kv: volume-linear needs kv" run "$in/nokv.json" --out "$out/r"
+bad "volume-linear without kv, crosscheck" "nokv.json: contact\.kv: volume-linear needs kv" \
+  crosscheck "$in/nokv.json" --out "$out/c"
+for kv in 0 -1e11; do
+  poly_variant "kv$kv" "s['contact']['kv'] = $kv"
+  bad "kv = $kv" "kv$kv.json: contact\.kv: .*(positive|> 0)" run "$in/kv$kv.json" --out "$out/r"
+  bad "kv = $kv, crosscheck" "kv$kv.json: contact\.kv: .*(positive|> 0)" \
+    crosscheck "$in/kv$kv.json" --out "$out/c"
+done
+poly_variant nokt "s['contact']['friction'] = 0.3"
+bad "volume-law friction without kt" "nokt.json: contact\.kt: the volume laws' friction \(contact\.friction 0\.3\) needs kt" \
+  run "$in/nokt.json" --out "$out/r"
+poly_variant concave "s['bodies'][0]['shape']['file'] = '$src/data/meshes/particle-seed3-320.off'"
+bad "non-convex body to YADE" "concave.json: bodies\[0\] \"particle\": shape: not convex" \
+  crosscheck "$in/concave.json" --out "$out/c"
+poly_variant vhertz "s['contact'] = {'law': 'volume-hertz'}"
+bad "volume-hertz to YADE" "vhertz.json: contact\.law: yade: .*\"volume-hertz\" has no YADE counterpart" \
+  crosscheck "$in/vhertz.json" --out "$out/c"
+
 # --- 3. Case names: a case writes into --out/cases/NAME, so NAME is a plain unique name
 case_variant() {  # case_variant NAME PYTHON-STATEMENT: $in/cases/NAME.json = the Hertz case, c changed
   mkdir -p "$in/cases"
