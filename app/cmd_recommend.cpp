@@ -28,8 +28,11 @@ void add_recommend_command(CLI::App& app, Action& action) {
       ->capture_default_str();
   cmd->add_option("--study", args->study,
                   "Study folder with guidelines.json (asperity study --out)");
-  cmd->add_option("--metric", args->metric, "peak_force, impulse or peak_force+impulse")
-      ->check(CLI::IsMember({"peak_force", "impulse", "peak_force+impulse"}))
+  cmd->add_option("--metric", args->metric,
+                  "peak_force, impulse, contact_duration, first_contact_time or "
+                  "peak_force+impulse")
+      ->check(CLI::IsMember({"peak_force", "impulse", "contact_duration", "first_contact_time",
+                             "peak_force+impulse"}))
       ->capture_default_str();
   cmd->add_option("--statistic", args->statistic, "median or p90 over the study's particles")
       ->check(CLI::IsMember({"median", "p90"}))
@@ -54,12 +57,19 @@ void add_recommend_command(CLI::App& app, Action& action) {
       std::cout << r.dump(1) << "\n";
       if (!args->quiet) {
         const auto& rec = r["recommendation"];
-        std::fprintf(stderr, "%s: %s%s within %s on %s (%s over the study's particles)\n",
+        // The reference's uncertainty beside the answer: the error is known no better.
+        const auto& u = rec["reference_uncertainty"];
+        const std::string unc = u.is_number()
+                                    ? ", reference uncertain by " +
+                                          std::to_string(u.get<double>() * 100).substr(0, 4) + "%"
+                                    : "";
+        std::fprintf(stderr, "%s: %s%s within %s on %s (%s over the study's particles%s)\n",
                      args->scene.string().c_str(), rec["model"].get<std::string>().c_str(),
                      rec["resolution"].is_null()
                          ? ""
                          : (" at " + rec["resolution"].dump() + " triangles").c_str(),
-                     args->tolerance.c_str(), args->metric.c_str(), args->statistic.c_str());
+                     args->tolerance.c_str(), args->metric.c_str(), args->statistic.c_str(),
+                     unc.c_str());
       }
       return kExitOk;
     };

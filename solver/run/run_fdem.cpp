@@ -33,6 +33,12 @@ TetMesh mesh_body(const scene::MeshShape& m, const std::string& key) {
   o.read.scale = m.scale;
   o.tetrahedralize = true;
   o.tet.element_size.size = m.element_size;
+  if (m.element_size_focus) {
+    o.tet.element_size.focus = *m.element_size_focus;
+    o.tet.element_size.focus_radius = m.element_size_focus_radius;
+    o.tet.element_size.growth = m.element_size_growth;
+    o.tet.element_size.far = m.element_size_far;
+  }
   o.element_size_key = key + "shape.element_size";
   return geometry::prepare_particle(m.file, o).tets;
 #else

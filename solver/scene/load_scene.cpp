@@ -59,6 +59,22 @@ Shape parse_shape(const JsonReader& s) {
     // Positive here; against the particle's size and the tetrahedra it would make, where the
     // mesh is read (geometry::element_size_problem).
     m.element_size = s.has("element_size") ? s.positive("element_size") : 0.0;
+    for (const char* k : {"element_size_focus", "element_size_focus_radius", "element_size_growth",
+                          "element_size_far"}) {
+      if (s.has(k) && !s.has("element_size")) s.fail(k, "needs element_size (the size it grades)");
+    }
+    if (s.has("element_size_focus")) m.element_size_focus = s.vec3("element_size_focus");
+    m.element_size_focus_radius =
+        s.has("element_size_focus_radius")
+            ? s.in_range("element_size_focus_radius", 0, 1e3, false, false)
+            : 0.0;
+    m.element_size_growth =
+        s.has("element_size_growth") ? s.in_range("element_size_growth", 0, 10, false, false) : 0.0;
+    if (s.has("element_size_far")) {
+      m.element_size_far = s.positive("element_size_far");
+      if (m.element_size_far < m.element_size)
+        s.fail("element_size_far", "must be at least element_size");
+    }
     return m;
   }
   const std::string near = io::closest_key(type, {"sphere", "plane", "box", "mesh"});

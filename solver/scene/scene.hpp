@@ -3,6 +3,7 @@
 
 #include <array>
 #include <filesystem>
+#include <limits>
 #include <optional>
 #include <string>
 #include <string_view>
@@ -34,6 +35,14 @@ struct MeshShape {
   // tetrahedron edge length, the surface bisected in its own planes to meet it (the geometry
   // unchanged) and the interior filled with quality tetrahedra (docs/geometry.md).
   double element_size = 0;
+  // Grading of element_size towards a point (geometry::ElementSize): the size holds within
+  // `element_size_focus_radius` of `element_size_focus` (m, the mesh file's coordinates after
+  // scale, before the body is placed) and grows beyond it at `element_size_growth` m per m up to
+  // `element_size_far`. No focus: uniform. The study grades towards each particle's strike point.
+  std::optional<Vec3> element_size_focus;
+  double element_size_focus_radius = 0;
+  double element_size_growth = 0;
+  double element_size_far = std::numeric_limits<double>::infinity();
 };
 using Shape = std::variant<SphereShape, PlaneShape, BoxShape, MeshShape>;
 

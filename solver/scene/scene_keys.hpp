@@ -28,7 +28,15 @@ inline constexpr std::string_view kBody[] = {
 inline constexpr std::string_view kSphere[] = {"type", "radius"};
 inline constexpr std::string_view kPlane[] = {"type", "point", "normal"};
 inline constexpr std::string_view kBox[] = {"type", "min", "max"};
-inline constexpr std::string_view kMesh[] = {"type", "file", "faces", "scale", "element_size"};
+inline constexpr std::string_view kMesh[] = {"type",
+                                             "file",
+                                             "faces",
+                                             "scale",
+                                             "element_size",
+                                             "element_size_focus",
+                                             "element_size_focus_radius",
+                                             "element_size_growth",
+                                             "element_size_far"};
 inline constexpr std::string_view kContact[] = {"law",           "kn", "kt",       "penalty",
                                                 "penalty_alpha", "kv", "friction", "restitution"};
 inline constexpr std::string_view kRecord[] = {"force_on", "every", "end_after_separation"};

@@ -74,6 +74,10 @@ with open(study_file) as f:
     n_cases = 0
     spec = json.load(f)
     n_cases = spec["particles"]["count"] * len(spec["resolutions"]) * len(spec["models"]) * len(spec["placements"])
+    # fem's refined element sizes (issue 12): a case per size, refined resolution and placement
+    ref = spec.get("refinement", {})
+    n_cases += spec["particles"]["count"] * len(ref.get("sizes", [])) * \
+        len(ref.get("resolutions", spec["resolutions"])) * len(ref.get("placements", spec["placements"]))
 
 # 1. The reference: one process, two threads.
 one = os.path.join(work, "one")
@@ -162,6 +166,8 @@ bad("--shard 3/2", [study_file, "--out", os.path.join(work, "bad"), "--shard", "
 bad("--shard 0/0", [study_file, "--out", os.path.join(work, "bad"), "--shard", "0/0"], ["--shard", "0/0"], os.path.join(work, "bad"))
 other = os.path.join(work, "other.json")
 spec["resolutions"] = [100, 500]
+if "refinement" in spec:  # its resolutions must be the study's (else refused before the folder is read)
+    spec["refinement"]["resolutions"] = [500]
 spec["particles"]["set"] = os.path.join(os.path.dirname(os.path.abspath(study_file)), spec["particles"]["set"])
 spec["name"] = "smoke"
 with open(other, "w") as f:

@@ -47,13 +47,14 @@ r = run("study", study_file, "--out", study, "-q")
 check("study exits 0", r.returncode == 0, r.stderr)
 with open(os.path.join(study, "study_summary.json")) as f:
     summary = json.load(f)
-check("16 cases, all done", summary["cases"] == 16 and summary["done"] == 16 and summary["failed"] == 0, summary)
+# 2 particles x (fem 2 resolutions x 2 placements + 1 refined, rigid 2 x 2) = 18
+check("18 cases, all done", summary["cases"] == 18 and summary["done"] == 18 and summary["failed"] == 0, summary)
 
 # 2. Resumable: a second run keeps every case.
 r = run("study", study_file, "--out", study, "-q")
 with open(os.path.join(study, "study_summary.json")) as f:
     again = json.load(f)
-check("rerun keeps every case", r.returncode == 0 and again["last_run"]["ran"] == 0 and again["last_run"]["kept"] == 16,
+check("rerun keeps every case", r.returncode == 0 and again["last_run"]["ran"] == 0 and again["last_run"]["kept"] == 18,
       again["last_run"])
 # the wall time that computed the cases is the first run's, and a rerun that only kept cases adds none
 check("computing wall time survives the rerun",
@@ -94,25 +95,68 @@ for name in pngs:
     # 200 px: the smallest chart is 6 in at 72-80 dpi; a blank or broken figure comes out tiny
     check(f"{name} is a PNG image", size is not None and size[0] >= 200 and size[1] >= 150, size)
 cases = tables.get("cases.csv", [])
-check("cases.csv: 16 rows", len(cases) == 16, len(cases))
+check("cases.csv: 18 rows", len(cases) == 18, len(cases))
 keys = {"peak_force": "peak_force", "impulse": "impulse", "contact_duration": "contact_duration",
         "first_contact_time": "first_contact_time", "cpu_seconds": "cpu_seconds_thread", "steps": "steps", "dt": "dt"}
+summaries = {}
 for row in cases:
-    folder = f"{row['model']}-{row['resolution']}-{row['placement']}"
+    h = f"h{float(row['element_size_rel']):g}-" if row["element_size_rel"] else ""
+    folder = f"{row['model']}-{row['resolution']}-{h}{row['placement']}"
     with open(os.path.join(study, "cases", row["particle"], folder, "summary.json")) as f:
         s = json.load(f)
+    summaries[(row["particle"], folder)] = s
+    # the element size: empty for the coarse default, else the value the case ran with
+    check(f"{row['particle']} {folder} element_size equals summary.json",
+          (row["element_size"] == "" and s["element_size"] is None) or
+          (row["element_size"] != "" and float(row["element_size"]) == s["element_size"]),
+          (row["element_size"], s.get("element_size")))
     for col, key in keys.items():
         # exact: the table writes the shortest decimal that reads back to the same double
         check(f"{row['particle']} {folder} {col} equals summary.json", float(row[col]) == float(s[key]),
               (row[col], s[key]))
-    # the study's penalty_alpha reaches the scene: p = 100 x E of the particle (50 GPa)
-    check(f"{row['particle']} {folder} penalty = 100 E", s["penalty"] == 100 * 5e10, s["penalty"])
-    check(f"{row['particle']} {folder} penalty_alpha reported", s["penalty_alpha"] == 100, s["penalty_alpha"])
+    if row["model"] == "fem":  # the study's penalty_alpha reaches the scene: p = 100 x E (50 GPa)
+        check(f"{row['particle']} {folder} penalty = 100 E", s["penalty"] == 100 * 5e10, s["penalty"])
+        check(f"{row['particle']} {folder} penalty_alpha reported", s["penalty_alpha"] == 100, s["penalty_alpha"])
+    else:  # the rigid polyhedron strikes under the elastic volume law, no penalty
+            check(f"{row['particle']} {folder} rigid under volume-hertz",
+              s.get("contact_law") == "volume-hertz" and "penalty" not in s, (s.get("contact_law"), s.get("penalty")))
     # every case's contact ends well inside the window, so every case stops after separation
     check(f"{row['particle']} {folder} ended by separation", s["ended_by"] == "separation",
           s["ended_by"])
     if row["resolution"] == "250":  # the reference of this study: its own errors are 0
         check(f"{folder} reference error 0", float(row["peak_force_err"]) == 0.0)
+
+# The two axes (issue 12). Each (particle, 250, lowest) fem sequence: coarse, then h = 0.15 R.
+for p in sorted({r["particle"] for r in cases}):
+    seq = [r for r in cases if r["particle"] == p and r["model"] == "fem" and r["resolution"] == "250"
+           and r["placement"] == "lowest"]
+    coarse = next(r for r in seq if r["element_size"] == "")
+    fine = next(r for r in seq if r["element_size"] != "")
+    sc = summaries[(p, "fem-250-lowest")]
+    sf = summaries[(p, "fem-250-h0.15-lowest")]
+    # the answer is the finest level; converged when the last refinement moved the peak < 1 %
+    change = abs(sc["peak_force"] - sf["peak_force"]) / abs(sf["peak_force"])
+    check(f"{p}: the refined case is the answer", fine["answer"] == "true" and coarse["answer"] == "false",
+          (fine["answer"], coarse["answer"]))
+    check(f"{p}: converged flag from the summaries", fine["converged"] == ("true" if change < 0.01 else "false")
+          and coarse["converged"] == "false", (fine["converged"], change))
+    check(f"{p}: convergence_change from the summaries", abs(float(fine["convergence_change"]) - change) <= 1e-12 * change,
+          (fine["convergence_change"], change))
+    # discretization error: coarse against the converged answer at the same resolution
+    d = (sc["peak_force"] - sf["peak_force"]) / sf["peak_force"]
+    check(f"{p}: discretization_error from the summaries", abs(float(coarse["discretization_error"]) - d) <= 1e-12 * abs(d)
+          and float(fine["discretization_error"]) == 0.0, (coarse["discretization_error"], d))
+    # the refined mesh keeps the geometry: the same volume (mass at one density; TetGen's
+    # tetrahedra fill the same closed surface, so to round-off) and the same placement relative
+    # to the centroid (the lowest point strikes at the same time: within one coarse step, the
+    # resolution of the first-contact interpolation's neighbourhood)
+    mc, mf = sc["bodies"][0]["mass"], sf["bodies"][0]["mass"]
+    check(f"{p}: refined volume equals coarse", abs(mc - mf) <= 1e-9 * mc, (mc, mf))
+    check(f"{p}: refined mesh has more tetrahedra", sf["bodies"][0]["tets"] > sc["bodies"][0]["tets"],
+          (sc["bodies"][0]["tets"], sf["bodies"][0]["tets"]))
+    check(f"{p}: refined centroid and strike point equal coarse (same first contact)",
+          abs(sc["first_contact_time"] - sf["first_contact_time"]) <= sc["dt"],
+          (sc["first_contact_time"], sf["first_contact_time"], sc["dt"]))
 fits = tables.get("cpu_fit.csv", [])
 check("CPU fit for fem and rigid", {f["model"] for f in fits} == {"fem", "rigid"}, fits)
 with open(os.path.join(report, "report.md")) as f:
@@ -120,7 +164,26 @@ with open(os.path.join(report, "report.md")) as f:
 for f_ in fits:
     check("report.md shows the fitted exponent", f"{float(f_['exponent']):.3g}" in md)
 for g in tables.get("guidelines.csv", []):
-    check("guideline model known", g["model"] in ("fem", "rigid", "sphere"), g)
+    check("guideline model known", g["model"] in ("fem", "rigid", "rigid-penalty", "sphere"), g)
+    check("guideline carries the reference uncertainty", g["reference_uncertainty"] != "", g)
+check("guidelines cover the four metrics",
+      {g["metric"] for g in tables.get("guidelines.csv", [])} >=
+      {"peak_force", "impulse", "contact_duration", "first_contact_time"},
+      {g["metric"] for g in tables.get("guidelines.csv", [])})
+# The reference uncertainty (lowest placement, peak force, median over the 2 particles): the
+# reference is the answer at 250 triangles, uncertain by its last refinement's change; the
+# geometry term (against the converged answer one resolution down) needs a refined sequence
+# there too, and 100 is not refined here, so it is absent (docs/study.md, "Guidelines").
+u = []
+for p in sorted({r["particle"] for r in cases}):
+    sc, sf = summaries[(p, "fem-250-lowest")], summaries[(p, "fem-250-h0.15-lowest")]
+    u.append(abs(sc["peak_force"] - sf["peak_force"]) / abs(sf["peak_force"]))
+median_u = sum(u) / 2  # the median of two values
+rows = [g for g in tables.get("guidelines.csv", []) if g["placement"] == "lowest" and g["metric"] == "peak_force"
+        and g["statistic"] == "median"]
+check("peak-force guidelines state the reference uncertainty from the summaries",
+      rows and all(abs(float(g["reference_uncertainty"]) - median_u) <= 1e-12 * median_u for g in rows),
+      ([g["reference_uncertainty"] for g in rows], median_u))
 
 # 5. recommend: JSON on stdout, a model the study has.
 scene = {"name": "new", "gravity": [0, 0, -9.81], "duration": 0.001,
@@ -135,12 +198,14 @@ r = run("recommend", scene_file, "--tolerance", "5%", "--study", study, "-q")
 check("recommend exits 0", r.returncode == 0, r.stderr)
 try:
     rec = json.loads(r.stdout)
-    check("recommend names a model", rec["recommendation"]["model"] in ("fem", "rigid"), rec)
+    check("recommend names a model", rec["recommendation"]["model"] in ("fem", "rigid", "sphere"), rec)
+    check("recommend states the reference uncertainty", "reference_uncertainty" in rec["recommendation"], rec)
     check("recommend reads the speed", abs(rec["particle"]["speed"] - 2.0) < 1e-12, rec["particle"])
     # the guideline holds at the study's penalty (alpha 100), so the scene change carries it:
     # 100 x the scene particle's E (5e10 Pa)
-    check("recommend carries the study's penalty",
-          rec["scene_change"].get("contact.penalty_alpha") == 100, rec["scene_change"])
+    if rec["recommendation"]["model"] == "fem":
+        check("recommend carries the study's penalty",
+              rec["scene_change"].get("contact.penalty_alpha") == 100, rec["scene_change"])
 except (json.JSONDecodeError, KeyError) as e:
     check("recommend writes JSON", False, e)
 r = run("recommend", scene_file, "--tolerance", "five", "--study", study)

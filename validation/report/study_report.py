@@ -24,28 +24,38 @@ import matplotlib.ticker  # noqa: E402
 
 TABLES = ["cases.csv", "classification.csv", "particle_classes.csv", "cpu_fit.csv", "candidates.csv",
           "guidelines.csv"]
-MODEL_COLOURS = {"fem": "tab:blue", "rigid": "tab:orange", "sphere": "tab:green"}
+MODEL_COLOURS = {"fem": "tab:blue", "rigid": "tab:orange", "rigid-penalty": "tab:red", "sphere": "tab:green"}
+METRICS = [("peak_force", "peak force"), ("impulse", "impulse"), ("contact_duration", "contact duration"),
+           ("first_contact_time", "first-contact time")]
 
 
 # What each input must hold (as `asperity study` writes it): the columns the report reads, and
 # those that must be numbers (an empty cell is allowed: a failed case has no peak force).
 SCHEMA = {
-    "cases.csv": (["particle", "model", "resolution", "placement", "status", "peak_force", "impulse",
-                   "contact_duration", "first_contact_time", "cpu_seconds", "max_asperity_change_rel",
-                   "peak_force_err", "impulse_err", "peak_force_err_fem", "impulse_err_fem"],
-                  ["resolution", "peak_force", "impulse", "contact_duration", "first_contact_time",
-                   "cpu_seconds", "max_asperity_change_rel", "peak_force_err", "impulse_err",
-                   "peak_force_err_fem", "impulse_err_fem"]),
+    "cases.csv": (["particle", "model", "resolution", "element_size", "element_size_rel", "placement", "status",
+                   "peak_force", "impulse", "contact_duration", "first_contact_time", "cpu_seconds",
+                   "max_asperity_change_rel", "peak_force_err", "impulse_err", "answer", "converged",
+                   "discretization_error", "convergence_change", "peak_force_err_fem", "impulse_err_fem",
+                   "contact_duration_err_fem", "first_contact_shift_fem"],
+                  ["resolution", "element_size", "element_size_rel", "peak_force", "impulse", "contact_duration",
+                   "first_contact_time", "cpu_seconds", "max_asperity_change_rel", "peak_force_err", "impulse_err",
+                   "discretization_error", "convergence_change", "peak_force_err_fem", "impulse_err_fem",
+                   "contact_duration_err_fem", "first_contact_shift_fem"]),
     "classification.csv": (["particle", "model", "placement", "resolution", "class"], ["resolution"]),
     "particle_classes.csv": (["particle", "model", "placement", "classes", "coarsest_class"], []),
     "cpu_fit.csv": (["model", "placement", "exponent", "coefficient", "points"], ["exponent", "coefficient"]),
-    "candidates.csv": (["placement", "model", "resolution", "particles", "peak_force_err_median",
-                        "peak_force_err_p90", "impulse_err_median", "impulse_err_p90", "cpu_seconds_median"],
-                       ["resolution", "particles", "peak_force_err_median", "peak_force_err_p90",
-                        "impulse_err_median", "impulse_err_p90", "cpu_seconds_median"]),
-    "guidelines.csv": (["placement", "metric", "tolerance", "statistic", "model", "resolution", "error",
-                        "cpu_seconds_median", "is_reference"],
-                       ["tolerance", "resolution", "error", "cpu_seconds_median"]),
+    "candidates.csv": (["placement", "model", "resolution", "element_size_rel", "particles", "peak_force_err_median",
+                        "peak_force_err_p90", "impulse_err_median", "impulse_err_p90", "contact_duration_err_median",
+                        "contact_duration_err_p90", "first_contact_time_err_median", "first_contact_time_err_p90",
+                        "cpu_seconds_median"],
+                       ["resolution", "element_size_rel", "particles", "peak_force_err_median", "peak_force_err_p90",
+                        "impulse_err_median", "impulse_err_p90", "contact_duration_err_median",
+                        "contact_duration_err_p90", "first_contact_time_err_median", "first_contact_time_err_p90",
+                        "cpu_seconds_median"]),
+    "guidelines.csv": (["placement", "metric", "tolerance", "statistic", "model", "resolution", "element_size_rel",
+                        "error", "reference_uncertainty", "resolvable", "cpu_seconds_median", "is_reference"],
+                       ["tolerance", "resolution", "element_size_rel", "error", "reference_uncertainty",
+                        "cpu_seconds_median"]),
 }
 SUMMARY_KEYS = {"study": str, "particles": int, "resolutions": list, "models": list, "placements": list,
                 "cases": int, "done": int, "failed": int, "cpu_seconds_total": (int, float), "published": dict,
@@ -192,6 +202,34 @@ class Doc:
                          f"<figcaption>{html.escape(alt)}</figcaption></figure>")
 
 
+def save_chart(fig, out, name, dpi):
+    """The chart as PNG (the report's) and as SVG beside it (vector, for papers)."""
+    fig.savefig(os.path.join(out, name), dpi=dpi)
+    fig.savefig(os.path.join(out, name[:-4] + ".svg"))
+    plt.close(fig)
+
+
+def write_markdown_table(csv_path, md_path):
+    """A CSV table also as a Markdown table (every column, the cells as written)."""
+    rows = read_csv(csv_path)
+    if not rows:
+        return
+    header = list(rows[0].keys())
+    lines = ["| " + " | ".join(header) + " |", "|" + "---|" * len(header)]
+    for r in rows:
+        lines.append("| " + " | ".join((r[h] or "").replace("|", "\\|") for h in header) + " |")
+    with open(md_path, "w") as fh:
+        fh.write("\n".join(lines) + "\n")
+
+
+def case_folder(c):
+    """The case's folder name (study_run.hpp): MODEL-N-PLACEMENT, fem-N-hSIZE-PLACEMENT, sphere-PLACEMENT."""
+    if c["model"] == "sphere":
+        return f"sphere-{c['placement']}"
+    h = f"h{num(c['element_size_rel']):g}-" if c.get("element_size_rel") else ""
+    return f"{c['model']}-{c['resolution']}-{h}{c['placement']}"
+
+
 def read_force(path):
     t, f = [], []
     with open(path) as fh:
@@ -204,10 +242,18 @@ def read_force(path):
     return t, f
 
 
+def reference_case(cases, particle, placement):
+    """The converged fem reference of a particle and placement: the answer of the fem sequence at the finest
+    resolution (cases.csv `answer`), or None."""
+    fem = [c for c in cases if c["particle"] == particle and c["placement"] == placement and c["model"] == "fem"
+           and c["answer"] == "true"]
+    return max(fem, key=lambda c: num(c["resolution"])) if fem else None
+
+
 def force_overlays(study, out, cases, doc):
     particles = sorted({c["particle"] for c in cases}, key=lambda p: [c["particle"] for c in cases].index(p))
     placements = sorted({c["placement"] for c in cases})
-    models = [m for m in ("fem", "rigid") if any(c["model"] == m for c in cases)]
+    models = [m for m in ("fem", "rigid", "rigid-penalty") if any(c["model"] == m for c in cases)]
     if not models:
         models = ["sphere"]
     names = []
@@ -218,12 +264,16 @@ def force_overlays(study, out, cases, doc):
             for j, m in enumerate(models):
                 ax = axes[i][j]
                 rows = [c for c in cases if c["particle"] == p and c["placement"] == pl and c["model"] == m
-                        and c["status"] == "ok"]
+                        and c["status"] == "ok" and not c["element_size"]]
                 rows.sort(key=lambda c: num(c["resolution"]))
                 cmap = plt.get_cmap("viridis")
+                # the converged fem reference (the answer at the finest resolution), thick grey
+                ref = reference_case(cases, p, pl)
+                if ref:
+                    t, f = read_force(os.path.join(study, "cases", p, case_folder(ref), "force.csv"))
+                    ax.plot([1e3 * x for x in t], f, color="0.6", lw=2.4, zorder=0, label="fem reference")
                 for k, c in enumerate(rows):
-                    folder = f"{m}-{c['resolution']}-{pl}"
-                    t, f = read_force(os.path.join(study, "cases", p, folder, "force.csv"))
+                    t, f = read_force(os.path.join(study, "cases", p, case_folder(c), "force.csv"))
                     ax.plot([1e3 * x for x in t], f, color=cmap(k / max(1, len(rows) - 1)), lw=1.0,
                             label=f"{c['resolution']}")
                 sph = [c for c in cases if c["particle"] == p and c["placement"] == pl and c["model"] == "sphere"
@@ -241,8 +291,7 @@ def force_overlays(study, out, cases, doc):
         fig.suptitle(f"{p}: force against time", fontsize=10)
         fig.tight_layout()
         name = f"force_{p}.png"
-        fig.savefig(os.path.join(out, name), dpi=72)
-        plt.close(fig)
+        save_chart(fig, out, name, 72)
         names.append((p, name))
     for p, name in names:
         doc.image(name, f"Force-time curves of {p} at every resolution")
@@ -272,8 +321,7 @@ def cpu_chart(out, cases, fits, doc):
     ax.legend(fontsize=7)
     ax.grid(True, which="both", alpha=0.3)
     fig.tight_layout()
-    fig.savefig(os.path.join(out, "cpu_vs_resolution.png"), dpi=80)
-    plt.close(fig)
+    save_chart(fig, out, "cpu_vs_resolution.png", 80)
     doc.image("cpu_vs_resolution.png", "CPU time against resolution, log-log, with the fitted exponent")
 
 
@@ -286,10 +334,13 @@ def pareto(points):
     return sorted(front, key=lambda i: points[i][0])
 
 
-def accuracy_cost_chart(out, candidates, doc):
+def accuracy_cost_chart(out, candidates, uncertainty, doc):
+    """Median |error| against the converged fem reference (dots) and its 90th percentile (triangles) against the
+    median CPU, per placement and metric; the reference's own uncertainty (median over the particles) as a grey band
+    from the axis up: an error inside it cannot be told from the reference's. The reference itself (error 0) is not
+    drawn: a log axis has no place for it, and no floor is invented for it."""
     placements = sorted({c["placement"] for c in candidates})
     fig, axes = plt.subplots(len(placements), 2, figsize=(10, 3.8 * len(placements)), squeeze=False)
-    floor = 1e-5  # the fem reference has error 0; drawn at this floor on the log axis
     for i, pl in enumerate(placements):
         rows = [c for c in candidates if c["placement"] == pl]
         for j, (metric, title) in enumerate((("peak_force", "peak force"), ("impulse", "impulse"))):
@@ -297,32 +348,45 @@ def accuracy_cost_chart(out, candidates, doc):
             pts = []
             for c in rows:
                 cost = num(c["cpu_seconds_median"])
-                err = max(num(c[f"{metric}_err_median"]), floor)
-                p90 = max(num(c[f"{metric}_err_p90"]), floor)
+                err, p90 = num(c[f"{metric}_err_median"]), num(c[f"{metric}_err_p90"])
+                if not err > 0:
+                    continue
                 pts.append((cost, err))
-                ax.scatter([cost], [err], color=MODEL_COLOURS[c["model"]], s=25, zorder=3)
-                ax.scatter([cost], [p90], color=MODEL_COLOURS[c["model"]], s=12, marker="^", alpha=0.5)
-                ax.annotate(c["resolution"] or "sphere", (cost, err), fontsize=6, xytext=(3, 3),
-                            textcoords="offset points")
-            front = pareto(pts)
-            ax.plot([pts[k][0] for k in front], [pts[k][1] for k in front], "k-", lw=0.8, label="Pareto front (median)")
+                colour = MODEL_COLOURS.get(c["model"], "k")
+                marker = "o" if not c["element_size_rel"] else "D"
+                ax.scatter([cost], [err], color=colour, s=25, zorder=3, marker=marker)
+                if p90 > 0:
+                    ax.scatter([cost], [p90], color=colour, s=12, marker="^", alpha=0.5)
+                label = c["resolution"] or "sphere"
+                if c["element_size_rel"]:
+                    label += f" h{num(c['element_size_rel']):g}"
+                ax.annotate(label, (cost, err), fontsize=6, xytext=(3, 3), textcoords="offset points")
+            if pts:
+                front = pareto(pts)
+                ax.plot([pts[k][0] for k in front], [pts[k][1] for k in front], "k-", lw=0.8,
+                        label="Pareto front (median)")
+            u = num((uncertainty.get((pl, metric)) or {}).get("median"))
+            if u > 0:
+                lo = min([e for _, e in pts] + [u]) / 3
+                ax.axhspan(lo, u, color="0.5", alpha=0.18, lw=0, label=f"reference uncertainty (median {100 * u:.2g} %)")
             for m, col in MODEL_COLOURS.items():
                 ax.scatter([], [], color=col, label=m)
+            ax.scatter([], [], color="grey", marker="D", s=20, label="fem, refined element size")
             ax.scatter([], [], color="grey", marker="^", s=12, label="90th percentile")
             for tol in (0.02, 0.05, 0.10):
                 ax.axhline(tol, color="grey", lw=0.5, ls=":")
             ax.set_xscale("log")
             ax.set_yscale("log")
             ax.set_xlabel("median CPU time per case (s)")
-            ax.set_ylabel(f"|error| in {title} vs fem reference")
+            ax.set_ylabel(f"|error| in {title} vs converged fem")
             ax.set_title(f"{title}, placed by {pl}", fontsize=9)
             ax.legend(fontsize=6)
             ax.grid(True, which="both", alpha=0.3)
     fig.tight_layout()
-    fig.savefig(os.path.join(out, "accuracy_vs_cost.png"), dpi=80)
-    plt.close(fig)
-    doc.image("accuracy_vs_cost.png", "Accuracy against cost: error in peak force and impulse against CPU time, "
-              "every model and resolution, Pareto front marked (errors of 0 drawn at 1e-5)")
+    save_chart(fig, out, "accuracy_vs_cost.png", 80)
+    doc.image("accuracy_vs_cost.png", "Accuracy against cost: error in peak force and impulse against the converged "
+              "fem reference, against CPU time, every model, resolution and element size; the grey band is the "
+              "reference's own uncertainty; the reference itself (error 0) is not drawn")
 
 
 def stability_files(stab_dir):
@@ -376,6 +440,7 @@ def stability_section(out, stab_dir, doc):
         shutil.copyfile(path, os.path.join(out, "stability_" + label.replace(os.sep, "_")))
     fig.tight_layout()
     fig.savefig(os.path.join(out, "stability.png"), dpi=72)
+    fig.savefig(os.path.join(out, "stability.svg"))
     plt.close(fig)
     doc.image("stability.png", "Stability map and accuracy against time step")
     doc.table(["sweep", "steps tried", "largest stable factor", "smallest unstable factor"], summary)
@@ -464,6 +529,78 @@ def penalty_section(out, pen_dir, doc):
         doc.image("penalty_sensitivity.png", "Peak force against resolution, one line per penalty alpha")
 
 
+def answer_section(doc, guidelines, published):
+    """The report's first section: to get X % on a metric, what to use, with the error and the reference's
+    uncertainty, beside the published study's CPU."""
+    placements = sorted({g["placement"] for g in guidelines})
+    if not placements:
+        doc.p("No guidelines: the study has no fem reference.")
+        return
+    pl = "lowest" if "lowest" in placements else placements[0]
+    doc.h(2, "The answer")
+    doc.p(f"To get within X % of the converged fem reference (placed by {pl}), use the cheapest model below; "
+          "'median' holds for half the particles, 'p90' for 90 % of them. Each entry: model, surface triangles, "
+          "element size at the strike point over the equivalent radius when refined, its error "
+          "± the reference's uncertainty, its median CPU per case. The published study (Zhang & Zsaki 2019, "
+          f"fem): {published['cpu_seconds_100']} s at 100 and {published['cpu_seconds_1000']} s at 1000 triangles "
+          "per simulation.")
+
+    def entry(g):
+        if not g:
+            return "nothing studied"
+        what = g["model"] + (f" {g['resolution']}" if g["resolution"] else "")
+        if g["element_size_rel"]:
+            what += f" h={num(g['element_size_rel']):g}R"
+        if g["is_reference"] == "true":
+            what += " (the reference)"
+        flag = " unresolved" if g["resolvable"] == "false" else ""
+        return (f"{what}: {pct(g['error'], 1)} ± {pct(g['reference_uncertainty'], 1)}{flag}, "
+                f"{fmt(g['cpu_seconds_median'], 3)} s")
+
+    rows = []
+    for metric, title in METRICS + [("peak_force+impulse", "peak force and impulse")]:
+        for tol in ("0.02", "0.05", "0.1"):
+            pick = {st: next((g for g in guidelines if g["placement"] == pl and g["metric"] == metric
+                              and num(g["tolerance"]) == num(tol) and g["statistic"] == st), None)
+                    for st in ("median", "p90")}
+            rows.append([f"{pct(tol, 0)} on {title}", entry(pick["median"]), entry(pick["p90"])])
+    doc.table(["to get", "median", "p90"], rows)
+
+
+def axes_section(doc, cases):
+    """Geometry against discretization per resolution: the coarse fem case against the converged answer at the
+    same resolution (discretization), and the converged answer against the reference (geometry)."""
+    fem = [c for c in cases if c["model"] == "fem" and c["status"] == "ok"]
+    if not any(c["element_size"] for c in fem):
+        return
+    doc.h(2, "Geometry and discretization")
+    doc.p("For each resolution N and placement, over the particles that were refined: the discretization error "
+          "(the coarse fem peak force, the surface triangles as the elements' faces as in the published study, "
+          "against the converged answer at the same N), the geometry effect (the converged answer at N against the "
+          "reference: the converged answer at the finest N), and how many sequences met the 1 % convergence "
+          "criterion. Medians of |value|; the published study's differences mixed the two.")
+
+    def median(v):
+        v = sorted(v)
+        return v[len(v) // 2] if len(v) % 2 else 0.5 * (v[len(v) // 2 - 1] + v[len(v) // 2]) if v else math.nan
+
+    rows = []
+    for pl in sorted({c["placement"] for c in fem}):
+        for n in sorted({c["resolution"] for c in fem}, key=num):
+            here = [c for c in fem if c["placement"] == pl and c["resolution"] == n]
+            answers = [c for c in here if c["answer"] == "true" and c["element_size"]]
+            if not answers:
+                continue
+            coarse = [c for c in here if not c["element_size"]
+                      and any(a["particle"] == c["particle"] for a in answers)]
+            rows.append([pl, n, len(answers), sum(a["converged"] == "true" for a in answers),
+                         pct(median([abs(num(c["discretization_error"])) for c in coarse])),
+                         pct(median([abs(num(a["peak_force_err_fem"])) for a in answers])),
+                         pct(median([num(a["convergence_change"]) for a in answers]))])
+    doc.table(["placement", "N", "sequences", "converged (< 1 %)", "discretization error (coarse vs converged)",
+               "geometry effect (converged vs reference)", "last refinement change"], rows)
+
+
 def main():
     ap = argparse.ArgumentParser(description=__doc__)
     ap.add_argument("study")
@@ -487,14 +624,24 @@ def main():
     with open(os.path.join(a.study, "study_summary.json")) as fh:
         summary = json.load(fh)
 
+    for t in TABLES:
+        write_markdown_table(os.path.join(a.study, t), os.path.join(a.out, t[:-4] + ".md"))
+    uncertainty = {}
+    for g in guidelines:
+        uncertainty.setdefault((g["placement"], g["metric"]), {})[g["statistic"]] = g["reference_uncertainty"]
+
     doc = Doc()
     doc.h(1, f"Particle-geometry study: {summary['study']}")
+    answer_section(doc, guidelines, summary["published"])
+    axes_section(doc, cases)
     doc.p(f"{summary['particles']} particles x resolutions {summary['resolutions']} x models "
           f"{', '.join(summary['models'])} x placements {', '.join(summary['placements'])}: {summary['cases']} cases, "
           f"{summary['done']} done, {summary['failed']} failed. Each particle is launched straight down onto a fixed "
           "block under gravity. Errors are relative to the finest resolution of the same model (err) and to the "
-          "finest fem mesh (err_fem), same placement. Tables: cases.csv, classification.csv, particle_classes.csv, "
-          "cpu_fit.csv, candidates.csv, guidelines.csv beside this file.")
+          "reference (err_fem): the converged fem answer at the finest resolution, same placement, where each fem "
+          "case at a resolution is refined at its strike point until the peak force settles (docs/study.md). "
+          "Tables: cases, classification, particle_classes, cpu_fit, candidates, guidelines, as CSV and as Markdown "
+          "beside this file; every chart as PNG and SVG.")
 
     doc.h(2, "Cost")
     pub = summary["published"]
@@ -518,30 +665,38 @@ def main():
     cpu_chart(a.out, cases, fits, doc)
 
     doc.h(2, "Accuracy against cost")
-    doc.p("Median over the particles of |error| against the finest fem mesh, and its 90th percentile, against the "
-          "median CPU time of each model and resolution.")
-    accuracy_cost_chart(a.out, candidates, doc)
-    doc.table(["placement", "model", "resolution", "particles", "peak err median", "peak err p90",
-               "impulse err median", "impulse err p90", "CPU median (s)"],
-              [[c["placement"], c["model"], c["resolution"] or "-", c["particles"], pct(c["peak_force_err_median"]),
-                pct(c["peak_force_err_p90"]), pct(c["impulse_err_median"]), pct(c["impulse_err_p90"]),
-                fmt(c["cpu_seconds_median"])] for c in candidates])
+    doc.p("Median over the particles of |error| against the converged fem reference, and its 90th percentile, "
+          "against the median CPU time of each model, resolution and element size.")
+    accuracy_cost_chart(a.out, candidates, uncertainty, doc)
+    doc.table(["placement", "model", "resolution", "h/R", "particles", "peak err median", "peak err p90",
+               "impulse err median", "impulse err p90", "duration err median", "arrival shift median",
+               "CPU median (s)"],
+              [[c["placement"], c["model"], c["resolution"] or "-", fmt(c["element_size_rel"]) or "coarse",
+                c["particles"], pct(c["peak_force_err_median"]), pct(c["peak_force_err_p90"]),
+                pct(c["impulse_err_median"]), pct(c["impulse_err_p90"]), pct(c["contact_duration_err_median"]),
+                pct(c["first_contact_time_err_median"]), fmt(c["cpu_seconds_median"])] for c in candidates])
 
     doc.h(2, "Guidelines")
-    doc.p("For each tolerance on peak force, impulse or both, the cheapest model and resolution (lowest median CPU) "
-          "whose |error| against the finest fem mesh stays within it for half the particles (median) or for 90 % of "
-          "them (p90). 'reference' means nothing cheaper met it: the finest mesh studied is needed, and maybe a "
-          "finer one.")
-    doc.table(["placement", "metric", "tolerance", "statistic", "model", "triangles", "error", "CPU median (s)"],
+    doc.p("For each tolerance on peak force, impulse, contact duration, first-contact time (its shift over the "
+          "reference's contact duration) or peak force and impulse together, the cheapest model, resolution and "
+          "element size (lowest median CPU) whose |error| against the converged fem reference stays within it for "
+          "half the particles (median) or for 90 % of them (p90), with the reference's own uncertainty (same "
+          "statistic over the particles). 'reference' means nothing cheaper met it; 'unresolved' that the "
+          "reference is uncertain by more than the tolerance.")
+    doc.table(["placement", "metric", "tolerance", "statistic", "model", "triangles", "h/R", "error",
+               "reference uncertainty", "CPU median (s)"],
               [[g["placement"], g["metric"], pct(g["tolerance"], 0), g["statistic"], g["model"],
-                (g["resolution"] or "-") + (" (reference)" if g["is_reference"] == "true" else ""), pct(g["error"]),
+                (g["resolution"] or "-") + (" (reference)" if g["is_reference"] == "true" else ""),
+                fmt(g["element_size_rel"]) or "coarse", pct(g["error"]),
+                pct(g["reference_uncertainty"]) + (" (unresolved)" if g["resolvable"] == "false" else ""),
                 fmt(g["cpu_seconds_median"])] for g in guidelines])
 
     if a.penalty:
         penalty_section(a.out, a.penalty, doc)
 
     doc.h(2, "Response classes")
-    doc.p("Each resolution's force curve against its model's finest one: shifted when the cross-correlation lag "
+    doc.p("Each model's force curve at each resolution (fem: the coarse default) against the converged fem "
+          "reference (the thick grey curve in the overlays below): shifted when the cross-correlation lag "
           "exceeds 5 % of the reference contact duration; tail when the contact lasts more than 10 % longer; "
           "asymmetric when the skewness of the force curve (time weighted by force) differs by more than 0.3; "
           "overlapping otherwise (criteria and reasons in docs/study.md). Classes: every label met at any coarser "
@@ -557,12 +712,13 @@ def main():
     force_overlays(a.study, a.out, cases, doc)
 
     doc.h(2, "Cases")
-    doc.table(["particle", "model", "N", "placement", "status", "peak (N)", "impulse (N s)", "duration (s)",
-               "first contact (s)", "CPU (s)", "asperity change", "peak err", "impulse err", "peak err fem",
-               "impulse err fem"],
-              [[c["particle"], c["model"], c["resolution"] or "-", c["placement"], c["status"], fmt(c["peak_force"]),
-                fmt(c["impulse"]), fmt(c["contact_duration"]), fmt(c["first_contact_time"]), fmt(c["cpu_seconds"], 3),
-                fmt(c["max_asperity_change_rel"], 3), pct(c["peak_force_err"]), pct(c["impulse_err"]),
+    doc.table(["particle", "model", "N", "h (mm)", "placement", "status", "peak (N)", "impulse (N s)",
+               "duration (s)", "first contact (s)", "CPU (s)", "converged", "discretization err", "peak err ref",
+               "impulse err ref"],
+              [[c["particle"], c["model"], c["resolution"] or "-",
+                fmt(1e3 * num(c["element_size"]), 3) if c["element_size"] else "-", c["placement"], c["status"],
+                fmt(c["peak_force"]), fmt(c["impulse"]), fmt(c["contact_duration"]), fmt(c["first_contact_time"]),
+                fmt(c["cpu_seconds"], 3), c["converged"], pct(c["discretization_error"]),
                 pct(c["peak_force_err_fem"]), pct(c["impulse_err_fem"])] for c in cases])
 
     if a.stability:

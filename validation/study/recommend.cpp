@@ -99,9 +99,19 @@ OJson recommendation(const io::Json* best, const io::Json& g, OJson& notes) {
       notes.push_back(
           "only the study's finest fem mesh met this tolerance: a finer mesh may be needed");
     }
+    // The reference's own uncertainty (guidelines.json from issue 12 on; null in older ones):
+    // the expected error is known no better than this.
+    const io::Json u = best->value("reference_uncertainty", io::Json());
+    if (best->value("resolvable", io::Json()) == io::Json(false)) {
+      notes.push_back(
+          "the study's reference is uncertain by more than this tolerance: the "
+          "expected error is below what the study can resolve");
+    }
     return {{"model", (*best)["model"]},
             {"resolution", (*best)["resolution"]},
+            {"element_size_rel", best->value("element_size_rel", io::Json())},
             {"expected_error", (*best)["error"]},
+            {"reference_uncertainty", u},
             {"cpu_seconds_median_in_study", (*best)["cpu_seconds_median"]},
             {"is_reference", (*best)["is_reference"]}};
   }
@@ -112,7 +122,9 @@ OJson recommendation(const io::Json* best, const io::Json& g, OJson& notes) {
       "a convergence check of your own");
   return {{"model", ref["model"]},
           {"resolution", ref["resolution"]},
+          {"element_size_rel", ref.value("element_size_rel", io::Json())},
           {"expected_error", nullptr},
+          {"reference_uncertainty", nullptr},
           {"cpu_seconds_median_in_study", nullptr},
           {"is_reference", true}};
 }
@@ -123,11 +135,26 @@ OJson scene_change(const OJson& rec, const io::Json& g, double diameter) {
   if (model == "sphere") {
     return {{"shape", {{"type", "sphere"}, {"radius", diameter / 2}}}, {"contact.law", "hertz"}};
   }
-  OJson change = {
-      {"model", model}, {"shape.faces", rec["resolution"]}, {"contact.law", "potential"}};
+  // "rigid" is the rigid polyhedron under the elastic volume law; "rigid-penalty" under the
+  // potential (the study's comparison model).
+  OJson change = {{"model", model == "fem" ? "fem" : "rigid"},
+                  {"shape.faces", rec["resolution"]},
+                  {"contact.law", model == "rigid" ? "volume-hertz" : "potential"}};
   // The guideline holds for the study's penalty (its peak forces depend on it, docs/study.md).
   const io::Json alpha = g.value("penalty_alpha", io::Json());
-  if (alpha.is_number()) change["contact.penalty_alpha"] = alpha.get<double>();
+  if (alpha.is_number() && model != "rigid") change["contact.penalty_alpha"] = alpha.get<double>();
+  // A refined fem answer: the element size at the strike point (the particle's lowest point
+  // for a fall onto a floor), graded as the study graded it.
+  const io::Json h = rec.value("element_size_rel", io::Json());
+  if (model == "fem" && h.is_number()) {
+    change["shape.element_size"] = h.get<double>() * diameter / 2;
+    const io::Json grading = g.value("refinement", io::Json());
+    if (grading.is_object()) {
+      change["shape.element_size_focus_radius"] =
+          grading.value("focus_radius", 4.0) * h.get<double>() * diameter / 2;
+      change["shape.element_size_growth"] = grading.value("growth", 0.3);
+    }
+  }
   return change;
 }
 
@@ -170,6 +197,11 @@ OJson recommend(const fs::path& scene_file, const fs::path& guidelines_file,
     if (!in_speed)
       notes.push_back(
           "the impact speed lies outside half to twice the study's: the guideline is extrapolated");
+  }
+  if (model == "fem" && rec["element_size_rel"].is_number()) {
+    notes.push_back(
+        "set shape.element_size_focus to the strike point (the mesh file's "
+        "coordinates; the lowest point for a fall onto a floor)");
   }
   if (particle.shape == "sphere" && model != "sphere") {
     notes.push_back(

@@ -11,10 +11,11 @@
 namespace asperity::study {
 
 struct RecommendOptions {
-  double tolerance = 0.05;                    // relative, e.g. 0.05 for "5%"
-  std::string metric = "peak_force+impulse";  // "peak_force", "impulse" or both
-  std::string statistic = "p90";              // "median" or "p90" over the study's particles
-  std::string placement;                      // "" : the guideline file's first
+  double tolerance = 0.05;  // relative, e.g. 0.05 for "5%"
+  std::string metric =
+      "peak_force+impulse";       // a guidelines metric (kMetrics) or "peak_force+impulse"
+  std::string statistic = "p90";  // "median" or "p90" over the study's particles
+  std::string placement;          // "" : the guideline file's first
 };
 
 // "5%" → 0.05, "0.05" → 0.05; InputError naming `key` otherwise or outside (0, 1).

@@ -22,10 +22,20 @@ const char* model_name(ModelKind m) {
       return "fem";
     case ModelKind::rigid:
       return "rigid";
+    case ModelKind::rigid_penalty:
+      return "rigid-penalty";
     case ModelKind::sphere:
       return "sphere";
   }
   return "?";
+}
+
+bool Refinement::applies(long resolution, Placement p) const {
+  return !sizes.empty() &&
+         (resolutions.empty() ||
+          std::find(resolutions.begin(), resolutions.end(), resolution) != resolutions.end()) &&
+         (placements.empty() ||
+          std::find(placements.begin(), placements.end(), p) != placements.end());
 }
 
 namespace {
@@ -94,8 +104,9 @@ StudyDef load_study(const fs::path& file) {
   const JsonReader r(json, file, "");
   r.require_object();
   r.only_keys({"name", "description", "particles", "particle_size", "resolutions", "models",
-               "placements", "speed", "orientation", "gap", "duration", "end_after_separation",
-               "penalty_alpha", "gravity", "material", "block_material", "rows", "jobs"});
+               "placements", "refinement", "speed", "orientation", "gap", "duration",
+               "end_after_separation", "penalty_alpha", "gravity", "material", "block_material",
+               "rows", "jobs"});
   StudyDef s;
   s.file = file;
   s.name = r.has("name") ? r.string("name") : file.stem().string();
@@ -165,10 +176,15 @@ StudyDef load_study(const fs::path& file) {
         s.models.push_back(ModelKind::fem);
       else if (m == "rigid")
         s.models.push_back(ModelKind::rigid);
+      else if (m == "rigid-penalty")
+        s.models.push_back(ModelKind::rigid_penalty);
       else if (m == "sphere")
         s.models.push_back(ModelKind::sphere);
       else
-        list.at(i).fail("", "must be \"fem\", \"rigid\" or \"sphere\" (got " + io::echo(v) + ")");
+        list.at(i).fail("", "must be \"fem\", \"rigid\", \"rigid-penalty\" or \"sphere\" (got " +
+                                io::echo(v) + ")");
+      if (std::count(s.models.begin(), s.models.end(), s.models.back()) > 1)
+        list.at(i).fail("", "lists a model twice");
     }
     if (s.models.empty()) list.fail("", "must list at least one model");
   }
@@ -187,6 +203,53 @@ StudyDef load_study(const fs::path& file) {
         list.at(i).fail("", "must be \"centroid\" or \"lowest\" (got " + io::echo(v) + ")");
     }
     if (s.placements.empty()) list.fail("", "must list at least one placement");
+  }
+
+  if (r.has("refinement")) {
+    const JsonReader f = r.child("refinement");
+    f.require_object();
+    f.only_keys({"sizes", "resolutions", "placements", "tolerance", "focus_radius", "growth"});
+    const JsonReader sizes = f.child("sizes");
+    for (std::size_t i = 0, n = sizes.require_array(); i < n; ++i) {
+      const Json& v = sizes.at(i).value();
+      // Below 1e-3 R the tetrahedra (and the steps) would run to millions; above 1 the size is
+      // not a refinement of any surface the study meshes.
+      if (!v.is_number() || !(v.get<double>() >= 1e-3 && v.get<double>() <= 1)) {
+        sizes.at(i).fail("", "must be a size over the equivalent radius from 0.001 to 1 (got " +
+                                 io::echo(v) + ")");
+      }
+      if (i > 0 && !(v.get<double>() < s.refinement.sizes.back())) {
+        sizes.at(i).fail("", "must be smaller than the size before it (the sequence refines)");
+      }
+      s.refinement.sizes.push_back(v.get<double>());
+    }
+    if (f.has("resolutions")) {
+      const JsonReader list = f.child("resolutions");
+      for (std::size_t i = 0, n = list.require_array(); i < n; ++i) {
+        const Json& v = list.at(i).value();
+        if (!v.is_number_integer() || std::find(s.resolutions.begin(), s.resolutions.end(),
+                                                v.get<long>()) == s.resolutions.end()) {
+          list.at(i).fail("", "must be one of the study's resolutions (got " + io::echo(v) + ")");
+        }
+        s.refinement.resolutions.push_back(v.get<long>());
+      }
+    }
+    if (f.has("placements")) {
+      const JsonReader list = f.child("placements");
+      for (std::size_t i = 0, n = list.require_array(); i < n; ++i) {
+        const Json& v = list.at(i).value();
+        const std::string m = v.is_string() ? v.get<std::string>() : "";
+        const auto it = std::find_if(s.placements.begin(), s.placements.end(),
+                                     [&](Placement q) { return m == placement_name(q); });
+        if (it == s.placements.end())
+          list.at(i).fail("", "must be one of the study's placements (got " + io::echo(v) + ")");
+        s.refinement.placements.push_back(*it);
+      }
+    }
+    if (f.has("tolerance")) s.refinement.tolerance = f.in_range("tolerance", 0, 0.5, true, false);
+    if (f.has("focus_radius"))
+      s.refinement.focus_radius = f.in_range("focus_radius", 0, 100, false, false);
+    if (f.has("growth")) s.refinement.growth = f.in_range("growth", 0, 10, false, false);
   }
 
   if (r.has("speed")) s.speed = r.in_range("speed", 0, 1000, true, false);
@@ -264,12 +327,21 @@ nlohmann::ordered_json definition_json(const StudyDef& def) {
   OJson models = OJson::array(), placements = OJson::array();
   for (ModelKind m : def.models) models.push_back(model_name(m));
   for (Placement p : def.placements) placements.push_back(placement_name(p));
+  OJson refine_placements = OJson::array();
+  for (Placement p : def.refinement.placements) refine_placements.push_back(placement_name(p));
+  const OJson refinement = {{"sizes", def.refinement.sizes},
+                            {"resolutions", def.refinement.resolutions},
+                            {"placements", refine_placements},
+                            {"tolerance", def.refinement.tolerance},
+                            {"focus_radius", def.refinement.focus_radius},
+                            {"growth", def.refinement.growth}};
   return {{"name", def.name},
           {"particles", particles},
           {"particle_size", optional_json(def.particle_size)},
           {"resolutions", def.resolutions},
           {"models", models},
           {"placements", placements},
+          {"refinement", refinement},
           {"speed", def.speed},
           {"orientation",
            def.random_orientation

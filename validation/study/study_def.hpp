@@ -28,10 +28,28 @@ struct ParticleSource {
 enum class Placement { centroid, lowest };
 const char* placement_name(Placement p);
 
-// Models a case can run: the deformable tetrahedral mesh, the rigid polyhedron, and the
+// Models a case can run: the deformable tetrahedral mesh; the rigid polyhedron under the
+// elastic volume law (contact "volume-hertz", docs/physics.md) and, as a labelled comparison,
+// under Munjiza's penalty ("rigid-penalty", whose peak is a property of the penalty); the
 // volume-equivalent rigid sphere (same volume and mass, Hertz against the block).
-enum class ModelKind { fem, rigid, sphere };
+enum class ModelKind { fem, rigid, rigid_penalty, sphere };
 const char* model_name(ModelKind m);
+
+// The fem model's discretization axis (issue 12): beside the coarse default (the surface
+// triangles are the elements' faces, as in the published study), each (particle, resolution,
+// placement) runs at a sequence of element sizes graded towards its strike point (the lowest
+// vertex of that mesh: the particle falls straight down without turning), the geometry
+// unchanged (surface bisected in its own planes, docs/geometry.md "Element size").
+struct Refinement {
+  // h at the strike point over the particle's equivalent radius, descending; empty: none.
+  std::vector<double> sizes;
+  std::vector<long> resolutions;      // which resolutions get the sequence; empty: all
+  std::vector<Placement> placements;  // which placements get it; empty: all
+  double tolerance = 0.01;            // converged: peak changes less than this between the last two
+  double focus_radius = 4;            // h holds within this many h of the strike point
+  double growth = 0.3;                // then grows at this rate (the Hertz gate's, issue 11)
+  bool applies(long resolution, Placement p) const;
+};
 
 struct StudyDef {
   std::filesystem::path file;  // where it was read from (for messages and relative paths)
@@ -42,6 +60,7 @@ struct StudyDef {
   long reference = 0;                   // the finest resolution (last of `resolutions`)
   std::vector<ModelKind> models;
   std::vector<Placement> placements;
+  Refinement refinement;
   double speed = 1;                 // m/s, straight down onto the block
   bool random_orientation = false;  // uniform random rotation per particle (seeded by its index)
   Vec3 orientation_deg = Vec3::Zero();  // else: rotations about x, then y, then z, degrees

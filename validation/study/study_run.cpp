@@ -127,12 +127,20 @@ class Progress {
 // Relative cost of a case for scheduling (longest first) and the time-left estimate: the FEM/DEM
 // collision costs about N^1.4 (measured, docs/study.md); a rigid polyhedron has no element
 // forces; the sphere is a few thousand DEM steps.
+// A refined fem case's step falls with its size at the strike point: the surface triangles'
+// edge over the equivalent radius is about √(29/N) (N equilateral triangles on a sphere's area
+// × 1.2), so the case costs about that ratio more per step.
 double case_weight(const CaseKey& c) {
   const double n = std::pow(static_cast<double>(c.resolution) / 100.0, 1.4);
   switch (c.model) {
     case ModelKind::fem:
+      if (c.level > 0) {
+        const double edge = std::sqrt(29.0 / static_cast<double>(c.resolution));
+        return n * std::max(1.0, edge / c.relative_size);
+      }
       return n;
     case ModelKind::rigid:
+    case ModelKind::rigid_penalty:
       return 0.5 * n;
     case ModelKind::sphere:
       return 0.01;
@@ -152,6 +160,7 @@ fs::path mesh_dir(const fs::path& out, const std::string& particle, long faces) 
 // Per particle, from its meshes: where each case starts and how long every case runs.
 struct ParticlePlan {
   std::map<long, double> centroid_height;   // centroid above the lowest vertex, per resolution, m
+  std::map<long, Vec3> lowest_point;        // the strike point, surface.off's coordinates, m
   std::map<long, double> dt_fem, dt_rigid;  // estimated steps (for the rows kept), s
   double radius = 0, mass = 0;              // volume-equivalent sphere of the reference mesh
   double duration = 0, contact_time = 0;    // s
@@ -193,8 +202,20 @@ OJson case_scene(const StudyDef& def, const ParticlePlan& pp, const CaseKey& c) 
     const fs::path rel = fs::path("..") / ".." / ".." / "meshes" / c.particle /
                          std::to_string(c.resolution) / "surface.off";
     particle["shape"] = {{"type", "mesh"}, {"file", rel.generic_string()}};
-    particle["model"] = model_name(c.model);
-    const double dt = (c.model == ModelKind::fem ? pp.dt_fem : pp.dt_rigid).at(c.resolution);
+    particle["model"] = c.model == ModelKind::fem ? "fem" : "rigid";
+    double dt = (c.model == ModelKind::fem ? pp.dt_fem : pp.dt_rigid).at(c.resolution);
+    if (c.level > 0) {
+      // Graded towards the strike point: h there, growing at the study's rate beyond
+      // focus_radius·h (the Hertz gate's grading, reports/fem/hertz_convergence.md).
+      const double h = c.relative_size * pp.radius;
+      const Vec3 focus = pp.lowest_point.at(c.resolution);
+      particle["shape"]["element_size"] = h;
+      particle["shape"]["element_size_focus"] = {focus.x(), focus.y(), focus.z()};
+      particle["shape"]["element_size_focus_radius"] = def.refinement.focus_radius * h;
+      particle["shape"]["element_size_growth"] = def.refinement.growth;
+      // The rows kept: the step falls about as h over the surface edge (case_weight).
+      dt *= std::min(1.0, c.relative_size / std::sqrt(29.0 / static_cast<double>(c.resolution)));
+    }
     every = std::max(1L, static_cast<long>(pp.duration / dt / def.rows));
   }
   particle["position"] = {0.0, 0.0, z};
@@ -212,9 +233,12 @@ OJson case_scene(const StudyDef& def, const ParticlePlan& pp, const CaseKey& c) 
          {"material", "block"},
          {"shape",
           {{"type", "box"}, {"min", {-half, -half, -depth}}, {"max", {half, half, 0.0}}}}}}},
-      {"contact", {{"law", c.model == ModelKind::sphere ? "hertz" : "potential"}}},
+      {"contact",
+       {{"law", c.model == ModelKind::sphere  ? "hertz"
+                : c.model == ModelKind::rigid ? "volume-hertz"
+                                              : "potential"}}},
       {"record", {{"force_on", "particle"}, {"every", every}}}};
-  if (def.penalty_alpha && c.model != ModelKind::sphere) {
+  if (def.penalty_alpha && (c.model == ModelKind::fem || c.model == ModelKind::rigid_penalty)) {
     scene["contact"]["penalty_alpha"] = *def.penalty_alpha;
   }
   if (def.end_after_separation && c.model != ModelKind::sphere) {
@@ -256,7 +280,13 @@ double estimated_dt(const TetMesh& tets, const StudyDef& def, fdem::BodyKind kin
 
 std::string CaseKey::dir_name() const {
   if (model == ModelKind::sphere) return std::string("sphere-") + placement_name(placement);
-  return std::string(model_name(model)) + "-" + std::to_string(resolution) + "-" +
+  std::string level_part;
+  if (level > 0) {
+    char buf[32];
+    std::snprintf(buf, sizeof buf, "h%g-", relative_size);
+    level_part = buf;
+  }
+  return std::string(model_name(model)) + "-" + std::to_string(resolution) + "-" + level_part +
          placement_name(placement);
 }
 
@@ -273,7 +303,13 @@ std::vector<CaseKey> plan_cases(const StudyDef& def) {
         continue;
       }
       for (long n : def.resolutions) {
-        for (Placement pl : def.placements) out.push_back({p.name, m, n, pl});
+        for (Placement pl : def.placements) {
+          out.push_back({p.name, m, n, pl});
+          if (m != ModelKind::fem || !def.refinement.applies(n, pl)) continue;
+          for (std::size_t k = 0; k < def.refinement.sizes.size(); ++k) {
+            out.push_back({p.name, m, n, pl, static_cast<int>(k + 1), def.refinement.sizes[k]});
+          }
+        }
       }
     }
   }
@@ -420,7 +456,7 @@ cluster::TaskReport make_mesh(const StudyDef& def, const fs::path& out, const Me
     const fs::path report = dir / "mesh.json";
     if (fs::exists(report)) {
       const io::Json j = io::read_json_file(report);
-      if (j.value("study_source", "") == tag && j.contains("dt_estimate_rigid")) {
+      if (j.value("study_source", "") == tag && j.contains("lowest_point")) {
         return {.skipped = true, .note = label + " (kept)"};
       }
     }
@@ -430,8 +466,11 @@ cluster::TaskReport make_mesh(const StudyDef& def, const fs::path& out, const Me
     geometry::write_surface_mesh(dir / "surface.off", prepared.surface);
     nlohmann::json j = geometry::mesh_report(prepared);
     j["study_source"] = tag;
-    j["centroid_height"] =
-        prepared.props.centroid.z() - prepared.surface.vertices.row(2).minCoeff();
+    Eigen::Index lowest = 0;
+    prepared.surface.vertices.row(2).minCoeff(&lowest);
+    const Vec3 low = prepared.surface.vertices.col(lowest);
+    j["centroid_height"] = prepared.props.centroid.z() - low.z();
+    j["lowest_point"] = {low.x(), low.y(), low.z()};
     j["dt_estimate_fem"] = estimated_dt(prepared.tets, def, fdem::BodyKind::deformable,
                                         prepared.props.equivalent_radius);
     j["dt_estimate_rigid"] =
@@ -497,6 +536,9 @@ std::map<std::string, ParticlePlan> plan_particles(const StudyDef& def, const fs
     const io::Json j =
         io::read_json_file(mesh_dir(out, def.particles[t.particle].name, t.faces) / "mesh.json");
     pp.centroid_height[t.faces] = j.at("centroid_height").get<double>();
+    const io::Json& low = j.at("lowest_point");
+    pp.lowest_point[t.faces] =
+        Vec3(low[0].get<double>(), low[1].get<double>(), low[2].get<double>());
     pp.dt_fem[t.faces] = j.at("dt_estimate_fem").get<double>();
     pp.dt_rigid[t.faces] = j.at("dt_estimate_rigid").get<double>();
     if (t.faces == def.reference) {
@@ -547,11 +589,15 @@ cluster::TaskReport run_case(const StudyDef& def, const fs::path& out, const Par
     thin_rows(result, def.rows);
     // The case's CPU on this worker thread (the run's own cpu_seconds counts the time loop only).
     result.summary["cpu_seconds_thread"] = cpu;
+    // The element size at the strike point (m, null for the coarse default), as the scene set it.
+    result.summary["element_size"] = c.level > 0 ? OJson(c.relative_size * pp.radius) : OJson();
     run::write_outputs(result, dir);
     OJson record = {{"particle", c.particle},
                     {"model", model_name(c.model)},
                     {"resolution", c.model == ModelKind::sphere ? OJson() : OJson(c.resolution)},
                     {"placement", placement_name(c.placement)},
+                    {"element_size", c.level > 0 ? OJson(c.relative_size * pp.radius) : OJson()},
+                    {"element_size_rel", c.level > 0 ? OJson(c.relative_size) : OJson()},
                     {"status", result.status},
                     {"start_gap", start_height(def, pp, c).second},
                     {"duration", pp.duration},

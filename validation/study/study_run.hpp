@@ -11,7 +11,8 @@
 //                                        run's summary.json, force.csv, energy.csv, and case.json
 //                                        (written last: the done marker); a failed case has
 //                                        failed.json instead and is retried on the next run
-//   (sphere cases are named sphere-PLACEMENT)
+//   (sphere cases are named sphere-PLACEMENT; a refined fem case fem-N-hSIZE-PLACEMENT, SIZE the
+//   element size at the strike point over the equivalent radius)
 #pragma once
 
 #include <filesystem>
@@ -78,10 +79,14 @@ struct CaseKey {
   ModelKind model = ModelKind::fem;
   long resolution = 0;  // 0 for the sphere
   Placement placement = Placement::centroid;
-  std::string dir_name() const;  // MODEL-N-PLACEMENT or sphere-PLACEMENT
+  // fem only: 0 the coarse default (the surface triangles are the elements' faces), k ≥ 1 the
+  // k-th size of the study's refinement sequence.
+  int level = 0;
+  double relative_size = 0;      // that size over the equivalent radius (0 at level 0)
+  std::string dir_name() const;  // MODEL-N-PLACEMENT, fem-N-hSIZE-PLACEMENT or sphere-PLACEMENT
 };
 
-// Every case of the study, in a fixed order (particle, model, resolution, placement).
+// Every case of the study, in a fixed order (particle, model, resolution, placement, level).
 std::vector<CaseKey> plan_cases(const StudyDef& def);
 
 // Runs every case of the shard not already done, on every rank of `options.world` with

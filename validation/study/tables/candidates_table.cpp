@@ -17,28 +17,57 @@ std::vector<CandidateStats> candidate_stats(const StudyCases& s) {
       const std::vector<long> resolutions =
           m == ModelKind::sphere ? std::vector<long>{0} : def.resolutions;
       for (long n : resolutions) {
-        std::vector<double> ep, ei, eb, cpu;
-        for (const ParticleSource& p : def.particles) {
-          const CaseData* c = s.find(p.name, m, n, pl);
-          if (!c) continue;
-          const FemErrors& e = s.err_fem[s.index_of(*c)];
-          if (!std::isfinite(e.peak) || !std::isfinite(e.impulse)) continue;
-          ep.push_back(std::abs(e.peak));
-          ei.push_back(std::abs(e.impulse));
-          eb.push_back(std::max(ep.back(), ei.back()));
-          cpu.push_back(c->cpu);
+        const int levels = m == ModelKind::fem && def.refinement.applies(n, pl)
+                               ? static_cast<int>(def.refinement.sizes.size())
+                               : 0;
+        for (int level = 0; level <= levels; ++level) {
+          std::vector<double> e[kMetricCount], eb, cpu;
+          for (const ParticleSource& p : def.particles) {
+            const CaseData* c = s.find(p.name, m, n, pl, level);
+            if (!c) continue;
+            const FemErrors& fe = s.err_fem[s.index_of(*c)];
+            bool all = true;
+            for (std::size_t k = 0; k < kMetricCount; ++k) all = all && std::isfinite(fe.metric(k));
+            if (!all) continue;
+            for (std::size_t k = 0; k < kMetricCount; ++k) e[k].push_back(std::abs(fe.metric(k)));
+            eb.push_back(std::max(e[0].back(), e[1].back()));
+            cpu.push_back(c->cpu);
+          }
+          if (eb.empty()) continue;
+          CandidateStats st{
+              .placement = pl,
+              .model = m,
+              .resolution = n,
+              .level = level,
+              .relative_size =
+                  level > 0 ? def.refinement.sizes[static_cast<std::size_t>(level - 1)] : 0.0};
+          st.particles = static_cast<int>(eb.size());
+          for (std::size_t k = 0; k < kMetricCount; ++k)
+            st.err[kMetrics[k]] = {quantile(e[k], 0.5), quantile(e[k], 0.9)};
+          st.err["peak_force+impulse"] = {quantile(eb, 0.5), quantile(eb, 0.9)};
+          st.cpu = quantile(cpu, 0.5);
+          out.push_back(std::move(st));
         }
-        if (ep.empty()) continue;
-        CandidateStats st{.placement = pl, .model = m, .resolution = n};
-        st.particles = static_cast<int>(ep.size());
-        st.err["peak_force"] = {quantile(ep, 0.5), quantile(ep, 0.9)};
-        st.err["impulse"] = {quantile(ei, 0.5), quantile(ei, 0.9)};
-        st.err["peak_force+impulse"] = {quantile(eb, 0.5), quantile(eb, 0.9)};
-        st.cpu = quantile(cpu, 0.5);
-        out.push_back(std::move(st));
       }
     }
   }
+  return out;
+}
+
+std::map<std::string, std::pair<double, double>> reference_uncertainty(const StudyCases& s,
+                                                                       Placement pl) {
+  std::vector<double> u[kMetricCount], ub;
+  for (const ParticleSource& p : s.def.particles) {
+    const StudyCases::Reference* r = s.reference(p.name, pl);
+    if (!r) continue;
+    for (std::size_t k = 0; k < kMetricCount; ++k) u[k].push_back(r->uncertainty.metric(k));
+    ub.push_back(std::max(r->uncertainty.peak, r->uncertainty.impulse));
+  }
+  std::map<std::string, std::pair<double, double>> out;
+  if (ub.empty()) return out;
+  for (std::size_t k = 0; k < kMetricCount; ++k)
+    out[kMetrics[k]] = {quantile(u[k], 0.5), quantile(u[k], 0.9)};
+  out["peak_force+impulse"] = {quantile(ub, 0.5), quantile(ub, 0.9)};
   return out;
 }
 
@@ -46,15 +75,24 @@ void write_candidates_table(const std::vector<CandidateStats>& stats,
                             const std::filesystem::path& dir) {
   std::vector<std::vector<OJson>> rows;
   for (const CandidateStats& st : stats) {
-    rows.push_back({placement_name(st.placement), model_name(st.model),
-                    resolution_or_null(st.model, st.resolution), st.particles,
-                    st.err.at("peak_force").first, st.err.at("peak_force").second,
-                    st.err.at("impulse").first, st.err.at("impulse").second, st.cpu});
+    std::vector<OJson> row = {placement_name(st.placement), model_name(st.model),
+                              resolution_or_null(st.model, st.resolution),
+                              st.level > 0 ? OJson(st.relative_size) : OJson(), st.particles};
+    for (const char* m : kMetrics) {
+      row.push_back(st.err.at(m).first);
+      row.push_back(st.err.at(m).second);
+    }
+    row.push_back(st.cpu);
+    rows.push_back(std::move(row));
   }
-  write_csv(dir / "candidates.csv",
-            {"placement", "model", "resolution", "particles", "peak_force_err_median",
-             "peak_force_err_p90", "impulse_err_median", "impulse_err_p90", "cpu_seconds_median"},
-            rows);
+  std::vector<std::string> header = {"placement", "model", "resolution", "element_size_rel",
+                                     "particles"};
+  for (const char* m : kMetrics) {
+    header.push_back(std::string(m) + "_err_median");
+    header.push_back(std::string(m) + "_err_p90");
+  }
+  header.push_back("cpu_seconds_median");
+  write_csv(dir / "candidates.csv", header, rows);
 }
 
 }  // namespace asperity::study::tables

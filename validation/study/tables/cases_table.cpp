@@ -7,6 +7,8 @@ void write_cases_table(const StudyCases& s, const std::filesystem::path& dir) {
   const std::vector<std::string> header = {"particle",
                                            "model",
                                            "resolution",
+                                           "element_size",
+                                           "element_size_rel",
                                            "placement",
                                            "status",
                                            "peak_force",
@@ -25,18 +27,32 @@ void write_cases_table(const StudyCases& s, const std::filesystem::path& dir) {
                                            "impulse_err",
                                            "contact_duration_err",
                                            "first_contact_shift",
+                                           "answer",
+                                           "converged",
+                                           "discretization_error",
+                                           "convergence_change",
                                            "peak_force_err_fem",
                                            "impulse_err_fem",
+                                           "contact_duration_err_fem",
+                                           "first_contact_shift_fem",
                                            "open_at_end",
                                            "message"};
   std::vector<std::vector<OJson>> rows;
   for (std::size_t i = 0; i < s.cases.size(); ++i) {
     const CaseData& c = s.cases[i];
     const CaseKey& k = c.key;
-    // The same model at the reference resolution (the sphere has no resolutions).
+    // The same model (and element size) at the reference resolution (the sphere has none).
     const CaseData* same = k.model == ModelKind::sphere
                                ? nullptr
-                               : s.find(k.particle, k.model, s.def.reference, k.placement);
+                               : s.find(k.particle, k.model, s.def.reference, k.placement, k.level);
+    // fem: where this case stands in its refinement sequence (tables/study_cases.hpp).
+    OJson answer, converged, change;
+    if (k.model == ModelKind::fem) {
+      const Sequence* q = s.sequence(k.particle, k.resolution, k.placement);
+      answer = q && q->answer == i;
+      converged = q && q->answer == i && q->converged;
+      if (q && q->answer == i) change = finite_or_null(q->change.peak);
+    }
     const bool ok = StudyCases::usable(&c);
     double pe = std::nan(""), ie = std::nan(""), de = std::nan(""), shift = std::nan("");
     if (ok && StudyCases::usable(same)) {
@@ -60,6 +76,8 @@ void write_cases_table(const StudyCases& s, const std::filesystem::path& dir) {
     rows.push_back({k.particle,
                     model_name(k.model),
                     resolution_or_null(k.model, k.resolution),
+                    num_or_null(c.summary, "element_size"),
+                    k.level > 0 ? OJson(k.relative_size) : OJson(),
                     placement_name(k.placement),
                     c.status,
                     num_or_null(c.summary, "peak_force"),
@@ -78,8 +96,14 @@ void write_cases_table(const StudyCases& s, const std::filesystem::path& dir) {
                     finite_or_null(ie),
                     finite_or_null(de),
                     finite_or_null(shift),
+                    answer,
+                    converged,
+                    finite_or_null(s.discretization_error[i]),
+                    change,
                     finite_or_null(s.err_fem[i].peak),
                     finite_or_null(s.err_fem[i].impulse),
+                    finite_or_null(s.err_fem[i].duration),
+                    finite_or_null(s.err_fem[i].arrival),
                     open_at_end,
                     c.message.empty() ? OJson() : OJson(c.message)});
   }

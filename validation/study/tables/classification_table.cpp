@@ -1,5 +1,5 @@
-// classification.csv: each resolution's force curve against its model's reference curve
-// (docs/study.md, "Classification").
+// classification.csv: each model and resolution's force curve against the converged fem
+// reference curve (docs/study.md, "Classification").
 #include <algorithm>
 
 #include "study/curve_measures.hpp"
@@ -15,15 +15,17 @@ std::vector<Classification> classify_resolutions(const StudyCases& s) {
     for (ModelKind m : def.models) {
       if (m == ModelKind::sphere) continue;
       for (Placement pl : def.placements) {
-        const CaseData* ref = s.find(p.name, m, def.reference, pl);
-        if (!StudyCases::usable(ref)) continue;
+        // Against the converged fem reference (issue 12): the reference answer at the finest
+        // resolution, whatever the model; each model's coarse case at every resolution.
+        const StudyCases::Reference* r = s.reference(p.name, pl);
+        if (!r) continue;
+        const CaseData* ref = &s.cases[r->index];
         const Curve rc = read_force(ref->dir / "force.csv");
         const double d_ref = ref->summary["contact_duration"].get<double>();
         const CurveShape rs = curve_shape(rc.t, rc.f);
         for (long n : def.resolutions) {
-          if (n == def.reference) continue;
           const CaseData* c = s.find(p.name, m, n, pl);
-          if (!StudyCases::usable(c)) continue;
+          if (!StudyCases::usable(c) || c == ref) continue;
           const Curve cc = read_force(c->dir / "force.csv");
           const double t_end =
               std::max(rc.t.empty() ? 0.0 : rc.t.back(), cc.t.empty() ? 0.0 : cc.t.back());

@@ -14,30 +14,118 @@ namespace asperity::study::tables {
 namespace fs = std::filesystem;
 namespace {
 
-std::string key_of(const std::string& p, ModelKind m, long n, Placement pl) {
-  return p + "|" + model_name(m) + "|" + std::to_string(n) + "|" + placement_name(pl);
+std::string key_of(const std::string& p, ModelKind m, long n, Placement pl, int level = 0) {
+  return p + "|" + model_name(m) + "|" + std::to_string(n) + "|" + placement_name(pl) + "|" +
+         std::to_string(level);
+}
+std::string seq_key(const std::string& p, long n, Placement pl) {
+  return p + "|" + std::to_string(n) + "|" + placement_name(pl);
 }
 
-// Each case's error against the fem reference (same particle and placement).
-std::vector<FemErrors> errors_against_fem(const StudyCases& s) {
-  std::vector<FemErrors> err(s.cases.size());
-  for (std::size_t i = 0; i < s.cases.size(); ++i) {
-    const CaseData& c = s.cases[i];
-    const CaseData* fem = s.find(c.key.particle, ModelKind::fem, s.def.reference, c.key.placement);
-    if (StudyCases::usable(&c) && StudyCases::usable(fem)) {
-      err[i].peak = rel_err(c.summary["peak_force"], fem->summary["peak_force"]);
-      err[i].impulse = rel_err(c.summary["impulse"], fem->summary["impulse"]);
+// a against b, per metric (FemErrors): relative errors, and the first-contact shift over b's
+// contact duration.
+FemErrors compare(const CaseData& a, const CaseData& b) {
+  FemErrors e;
+  e.peak = rel_err(a.summary["peak_force"], b.summary["peak_force"]);
+  e.impulse = rel_err(a.summary["impulse"], b.summary["impulse"]);
+  e.duration = rel_err(a.summary["contact_duration"], b.summary["contact_duration"]);
+  const OJson &ta = a.summary["first_contact_time"], &tb = b.summary["first_contact_time"],
+              &d = b.summary["contact_duration"];
+  if (ta.is_number() && tb.is_number() && d.is_number() && d.get<double>() > 0) {
+    e.arrival = (ta.get<double>() - tb.get<double>()) / d.get<double>();
+  }
+  return e;
+}
+
+FemErrors abs_of(const FemErrors& e) {
+  return {std::abs(e.peak), std::abs(e.impulse), std::abs(e.duration), std::abs(e.arrival)};
+}
+
+// The refinement sequences (fem), the references, and each case's errors against them.
+void settle(StudyCases& s) {
+  const StudyDef& def = s.def;
+  s.err_fem.assign(s.cases.size(), {});
+  s.discretization_error.assign(s.cases.size(), std::nan(""));
+  if (!s.has_fem_reference()) return;
+  const int levels = static_cast<int>(def.refinement.sizes.size());
+  for (const ParticleSource& p : def.particles) {
+    for (Placement pl : def.placements) {
+      for (long n : def.resolutions) {
+        // The usable levels, coarse first; the answer is the finest.
+        std::vector<const CaseData*> seq;
+        const int top = def.refinement.applies(n, pl) ? levels : 0;
+        for (int l = 0; l <= top; ++l) {
+          const CaseData* c = s.find(p.name, ModelKind::fem, n, pl, l);
+          if (StudyCases::usable(c)) seq.push_back(c);
+        }
+        if (seq.empty()) continue;
+        Sequence q;
+        q.answer = s.index_of(*seq.back());
+        q.levels = static_cast<int>(seq.size());
+        if (seq.size() >= 2) {
+          q.change = abs_of(compare(*seq[seq.size() - 2], *seq.back()));
+          q.converged = seq.size() >= 2 && seq.back()->key.level > 0 &&
+                        q.change.peak < def.refinement.tolerance;
+        }
+        const CaseData& answer = s.cases[q.answer];
+        for (int l = 0; l <= top; ++l) {
+          const CaseData* c = s.find(p.name, ModelKind::fem, n, pl, l);
+          if (StudyCases::usable(c)) {
+            s.discretization_error[s.index_of(*c)] =
+                rel_err(c->summary["peak_force"], answer.summary["peak_force"]);
+          }
+        }
+        s.sequences[seq_key(p.name, n, pl)] = q;
+      }
+      // The reference: the answer at the finest resolution; the geometry's share of its
+      // uncertainty from the next coarser resolution that has a sequence.
+      const Sequence* ref = s.sequence(p.name, def.reference, pl);
+      if (!ref) continue;
+      StudyCases::Reference r;
+      r.index = ref->answer;
+      r.discretization = ref->change;
+      for (auto it = def.resolutions.rbegin() + 1; it < def.resolutions.rend(); ++it) {
+        const Sequence* prev = s.sequence(p.name, *it, pl);
+        if (prev && (prev->levels > 1) == (ref->levels > 1)) {
+          r.geometry = abs_of(compare(s.cases[prev->answer], s.cases[ref->answer]));
+          break;
+        }
+      }
+      const auto hyp = [](double a, double b) {
+        return std::hypot(std::isfinite(a) ? a : 0.0, std::isfinite(b) ? b : 0.0);
+      };
+      r.uncertainty = {hyp(r.discretization.peak, r.geometry.peak),
+                       hyp(r.discretization.impulse, r.geometry.impulse),
+                       hyp(r.discretization.duration, r.geometry.duration),
+                       hyp(r.discretization.arrival, r.geometry.arrival)};
+      s.references[std::string(p.name) + "|" + placement_name(pl)] = r;
     }
   }
-  return err;
+  for (std::size_t i = 0; i < s.cases.size(); ++i) {
+    const CaseData& c = s.cases[i];
+    const StudyCases::Reference* r = s.reference(c.key.particle, c.key.placement);
+    if (r && StudyCases::usable(&c)) s.err_fem[i] = compare(c, s.cases[r->index]);
+  }
 }
 
 }  // namespace
 
 const CaseData* StudyCases::find(const std::string& particle, ModelKind m, long resolution,
-                                 Placement pl) const {
-  const auto it = index.find(key_of(particle, m, resolution, pl));
+                                 Placement pl, int level) const {
+  const auto it = index.find(key_of(particle, m, resolution, pl, level));
   return it == index.end() ? nullptr : &cases[it->second];
+}
+
+const Sequence* StudyCases::sequence(const std::string& particle, long resolution,
+                                     Placement pl) const {
+  const auto it = sequences.find(seq_key(particle, resolution, pl));
+  return it == sequences.end() ? nullptr : &it->second;
+}
+
+const StudyCases::Reference* StudyCases::reference(const std::string& particle,
+                                                   Placement pl) const {
+  const auto it = references.find(particle + "|" + placement_name(pl));
+  return it == references.end() ? nullptr : &it->second;
 }
 
 bool StudyCases::has_fem_reference() const {
@@ -67,10 +155,10 @@ StudyCases load_study_cases(const StudyDef& def, const fs::path& dir) {
     const long faces = k.model == ModelKind::sphere ? def.reference : k.resolution;
     const fs::path mj = dir / "meshes" / k.particle / std::to_string(faces) / "mesh.json";
     if (fs::exists(mj)) c.mesh = OJson::parse(io::read_json_file(mj).dump());
-    s.index[key_of(k.particle, k.model, k.resolution, k.placement)] = s.cases.size();
+    s.index[key_of(k.particle, k.model, k.resolution, k.placement, k.level)] = s.cases.size();
     s.cases.push_back(std::move(c));
   }
-  s.err_fem = errors_against_fem(s);
+  settle(s);
   return s;
 }
 

@@ -17,7 +17,8 @@ namespace asperity::study::tables {
 // resolution and against the fem reference (same placement).
 void write_cases_table(const StudyCases& s, const std::filesystem::path& dir);
 
-// Each resolution's force curve against its model's reference curve (same particle, placement).
+// Each model and resolution's force curve (the coarse default for fem) against the converged fem
+// reference curve (same particle, placement).
 struct Classification {
   std::string particle;
   ModelKind model;
@@ -52,13 +53,19 @@ void write_cpu_fit_table(const std::vector<CpuFit>& fits, const std::filesystem:
 struct CandidateStats {
   Placement placement;
   ModelKind model;
-  long resolution;  // 0 for the sphere
+  long resolution;           // 0 for the sphere
+  int level = 0;             // fem: 0 coarse, k the k-th refined element size
+  double relative_size = 0;  // that size over the equivalent radius
   int particles = 0;
   std::map<std::string, std::pair<double, double>> err;  // metric → (median, p90)
   double cpu = std::nan("");
 };
 // Every candidate with at least one particle's errors, by placement (none without fem).
 std::vector<CandidateStats> candidate_stats(const StudyCases& s);
+// The reference's uncertainty over the particles of a placement, per metric (kMetrics and
+// "peak_force+impulse"): (median, p90).
+std::map<std::string, std::pair<double, double>> reference_uncertainty(const StudyCases& s,
+                                                                       Placement pl);
 // candidates.csv: a row per candidate.
 void write_candidates_table(const std::vector<CandidateStats>& stats,
                             const std::filesystem::path& dir);
