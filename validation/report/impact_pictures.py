@@ -10,7 +10,7 @@ matplotlib's 3-D polygons and 2-D triangles need nothing beyond deps/debian-pack
   --hertz SCENE --hertz-out DIR   a deformable sphere on a block: DIR/hertz_contact_zone.png and
                                   .svg (contact pressure seen from below with the Hertz contact
                                   radius, the von Mises section under the contact, pressure
-                                  against radius beside Hertz's)
+                                  against radius beside Hertz's) and .json (the numbers)
   --study DIR [--resolution N] [--placement P]
                                   each particle of an `asperity study` folder, fem and rigid at
                                   N triangles side by side: DIR/pictures/impact_PARTICLE.png,
@@ -22,6 +22,7 @@ import argparse
 import json
 import math
 import os
+import re
 import shutil
 import subprocess
 import sys
@@ -62,6 +63,8 @@ class Frame:
     """The moving bodies of one .vtu frame as numpy arrays, and their outer surface."""
 
     def __init__(self, path):
+        if not os.path.exists(path):
+            raise RuntimeError(f"{path}: no such frame")
         reader = vtk.vtkXMLUnstructuredGridReader()
         reader.SetFileName(path)
         reader.Update()
@@ -122,6 +125,14 @@ class Frame:
                                       x[t[:, 3]] - x[t[:, 0]])) / 6)
 
 
+def peak_time(vtk_dir):
+    """The simulated time run.pvd lists for the peak frame, s."""
+    m = re.search(r'timestep="([^"]+)" part="0" file="bodies_peak.vtu"', open(os.path.join(vtk_dir, "run.pvd")).read())
+    if not m:
+        raise RuntimeError(f"{vtk_dir}/run.pvd: no peak frame listed")
+    return float(m.group(1))
+
+
 def material(scene_path, body):
     with open(scene_path) as fh:
         s = json.load(fh)
@@ -133,7 +144,7 @@ def material(scene_path, body):
 def save(fig, out_dir, stem, svg):
     fig.savefig(os.path.join(out_dir, stem + ".png"), dpi=90, metadata={"Software": None})
     if svg:
-        fig.savefig(os.path.join(out_dir, stem + ".svg"), metadata=SVG_META)
+        fig.savefig(os.path.join(out_dir, stem + ".svg"), metadata=SVG_META, dpi=90)
     plt.close(fig)
 
 
@@ -169,7 +180,8 @@ def hertz_picture(asperity, scene, out_dir, work):
     cap = frame.tris[np.all(x[frame.tris, 2] < bottom + 0.5 * radius, axis=1)]
     from matplotlib.tri import Triangulation
     tri = Triangulation((x[:, 0] - centre[0]) * 1e3, (x[:, 1] - centre[1]) * 1e3, cap)
-    pc = ax.tripcolor(tri, frame.pressure / 1e3, shading="gouraud", cmap="inferno", vmin=0)
+    pc = ax.tripcolor(tri, frame.pressure / 1e3, shading="gouraud", cmap="inferno", vmin=0,
+                      rasterized=True)  # the SVG keeps its lines and text as vectors
     ax.triplot(tri, color="0.6", lw=0.25)
     t = np.linspace(0, 2 * math.pi, 200)
     ax.plot(a * 1e3 * np.cos(t), a * 1e3 * np.sin(t), "c-", lw=1.5, label=f"Hertz a = {a * 1e3:.1f} mm")
@@ -200,7 +212,8 @@ def hertz_picture(asperity, scene, out_dir, work):
         ids = cut.GetCell(i).GetPointIds()
         polys.append([((pts[ids.GetId(j), 0] - centre[0]) * 1e3, (pts[ids.GetId(j), 2] - bottom) * 1e3)
                       for j in range(ids.GetNumberOfIds())])
-    col = PolyCollection(polys, array=vm / 1e3, cmap="viridis", edgecolors="0.3", linewidths=0.15)
+    col = PolyCollection(polys, array=vm / 1e3, cmap="viridis", edgecolors="0.3", linewidths=0.15,
+                         rasterized=True)
     ax.add_collection(col)
     ax.axvline(-a * 1e3, color="c", lw=1)
     ax.axvline(a * 1e3, color="c", lw=1, label="±a (Hertz)")
@@ -225,14 +238,27 @@ def hertz_picture(asperity, scene, out_dir, work):
     ax.set_ylabel("contact pressure (kPa)")
     ax.set_title("pressure against radius", fontsize=10)
     ax.legend(fontsize=8)
-    fig.suptitle(f"{os.path.basename(scene)} at peak force (t = {summary['peak_force_time'] * 1e3:.2f} ms): "
+    fig.suptitle(f"{os.path.basename(scene)} at peak force (t = {peak_time(os.path.join(work, 'hertz', 'vtk')) * 1e3:.2f} ms): "
                  f"F = {f_peak:.1f} N (Hertz impact of the meshed mass: {f_hertz:.1f} N, "
                  f"{100 * (f_peak / f_hertz - 1):+.1f} %); {len(frame.tets)} tetrahedra. Hertz lines at the run's F.",
                  fontsize=10)
     fig.tight_layout()
     save(fig, out_dir, "hertz_contact_zone", svg=True)
-    return {"peak_force": f_peak, "hertz_force": f_hertz, "contact_radius": a, "p0": p0,
-            "max_pressure": float(frame.pressure.max()), "max_von_mises": float(frame.von_mises.max())}
+    # The numbers behind the picture: the load it shows, and the loaded patch against a.
+    lower = frame.tris[np.all(x[frame.tris, 2] < bottom + 2 * a, axis=1)]
+    edges = np.concatenate([x[lower[:, j]] - x[lower[:, (j + 1) % 3]] for j in range(3)])
+    numbers = {"scene": os.path.basename(scene), "tetrahedra": int(len(frame.tets)),
+               "peak_force": f_peak, "hertz_impact_force": f_hertz, "radius": radius, "e_star": e_star,
+               "contact_radius_hertz": a, "p0_hertz": p0,
+               "nodal_force_sum": float(np.linalg.norm(frame.f, axis=1).sum()),
+               "nodal_force_resultant": float(np.linalg.norm(frame.f.sum(axis=0))),
+               "patch_radius": float(r_xy[loaded].max()) if loaded.any() else 0.0,
+               "longest_edge_near_contact": float(np.linalg.norm(edges, axis=1).max()),
+               "max_pressure": float(frame.pressure.max()), "max_von_mises": float(frame.von_mises.max())}
+    with open(os.path.join(out_dir, "hertz_contact_zone.json"), "w") as fh:
+        json.dump(numbers, fh, indent=1)
+        fh.write("\n")
+    return numbers
 
 
 # ---------------------------------------------------------------------------------------------
@@ -322,8 +348,8 @@ def main():
             os.makedirs(a.hertz_out, exist_ok=True)
             h = hertz_picture(a.asperity, a.hertz, a.hertz_out, work)
             print(f"impact_pictures: {a.hertz_out}/hertz_contact_zone.png: peak {h['peak_force']:.1f} N "
-                  f"(Hertz {h['hertz_force']:.1f} N), a = {h['contact_radius'] * 1e3:.2f} mm, "
-                  f"p0 = {h['p0'] / 1e3:.0f} kPa, nodal max {h['max_pressure'] / 1e3:.0f} kPa")
+                  f"(Hertz {h['hertz_impact_force']:.1f} N), a = {h['contact_radius_hertz'] * 1e3:.2f} mm, "
+                  f"p0 = {h['p0_hertz'] / 1e3:.0f} kPa, nodal max {h['max_pressure'] / 1e3:.0f} kPa")
         if a.study:
             made = study_pictures(a.asperity, a.study, a.resolution, a.placement, work)
             print(f"impact_pictures: {len(made)} particle pictures in {a.study}/pictures")
