@@ -276,7 +276,7 @@ def surface_panel(ax, frame, values, vmax, cmap, title):
     ax.set_xlim(mid[0] - half, mid[0] + half)
     ax.set_ylim(mid[1] - half, mid[1] + half)
     ax.set_zlim(mid[2] - half, mid[2] + half)
-    ax.set_box_aspect((1, 1, 1))
+    ax.set_box_aspect((1, 1, 1), zoom=1.4)
     ax.view_init(elev=-35, azim=-60)  # from below: the contact side faces the camera
     ax.set_axis_off()
     ax.set_title(title, fontsize=9)
@@ -317,9 +317,9 @@ def study_pictures(asperity, study, resolution, placement, work):
         vm = fem.von_mises[fem.tri_cell] / 1e6
         surface_panel(fig.add_subplot(1, 3, 1, projection="3d"), fem, vm, vm.max(), "viridis",
                       f"fem: von Mises stress (MPa), max {vm.max():.0f}")
-        surface_panel(fig.add_subplot(1, 3, 2, projection="3d"), fem, p_fem / 1e6, p_max, "inferno",
+        surface_panel(fig.add_subplot(1, 3, 2, projection="3d"), fem, p_fem / 1e6, p_max, "YlOrRd",
                       f"fem: contact pressure (MPa)\npeak force {runs['fem'][0]['peak_force']:.0f} N")
-        surface_panel(fig.add_subplot(1, 3, 3, projection="3d"), rigid, p_rigid / 1e6, p_max, "inferno",
+        surface_panel(fig.add_subplot(1, 3, 3, projection="3d"), rigid, p_rigid / 1e6, p_max, "YlOrRd",
                       f"rigid: contact pressure (MPa)\npeak force {runs['rigid'][0]['peak_force']:.0f} N")
         fig.suptitle(f"{particle}, {resolution} triangles, placed by {placement}: the peak-force frames, "
                      "seen from below", fontsize=10)
