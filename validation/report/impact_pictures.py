@@ -34,6 +34,7 @@ matplotlib.use("Agg")
 import matplotlib.pyplot as plt  # noqa: E402
 import numpy as np  # noqa: E402
 from matplotlib.collections import PolyCollection  # noqa: E402
+from matplotlib.tri import Triangulation  # noqa: E402
 from mpl_toolkits.mplot3d.art3d import Poly3DCollection  # noqa: E402
 import vtk  # noqa: E402
 from vtk.util.numpy_support import vtk_to_numpy  # noqa: E402
@@ -178,7 +179,6 @@ def hertz_picture(asperity, scene, out_dir, work):
     # (1) the contact face from below: nodal pressure on the lower cap, and the Hertz circle.
     ax = axes[0]
     cap = frame.tris[np.all(x[frame.tris, 2] < bottom + 0.5 * radius, axis=1)]
-    from matplotlib.tri import Triangulation
     tri = Triangulation((x[:, 0] - centre[0]) * 1e3, (x[:, 1] - centre[1]) * 1e3, cap)
     pc = ax.tripcolor(tri, frame.pressure / 1e3, shading="gouraud", cmap="inferno", vmin=0,
                       rasterized=True)  # the SVG keeps its lines and text as vectors
