@@ -3,30 +3,10 @@
 #include <memory>
 
 #include "app/commands.hpp"
-#include "app/yade_polyhedra_crosscheck.hpp"
-#include "io/json_file.hpp"
 #include "peers/crosscheck.hpp"
 #include "peers/peer.hpp"
 
 namespace asperity::app {
-namespace {
-
-// Whether a scene (or a validation case's scene) has a mesh body: rigid polyhedra go to YADE's
-// Polyhedra through their own driver (app/yade_polyhedra_crosscheck.cpp).
-bool has_mesh_body(const std::filesystem::path& file) {
-  const io::Json j = io::read_json_file(file);
-  const io::Json& s = j.contains("scene") ? j["scene"] : j;
-  if (!s.is_object() || !s.contains("bodies") || !s["bodies"].is_array()) return false;
-  for (const io::Json& b : s["bodies"]) {
-    if (b.is_object() && b.contains("shape") && b["shape"].is_object() &&
-        b["shape"].value("type", "") == "mesh") {
-      return true;
-    }
-  }
-  return false;
-}
-
-}  // namespace
 
 void add_crosscheck_command(CLI::App& app, Action& action) {
   struct Args {
@@ -63,13 +43,6 @@ void add_crosscheck_command(CLI::App& app, Action& action) {
   cc->add_flag("-q,--quiet", args->o.quiet, "No summary lines on stderr");
   cc->callback([args, &action] {
     action = [args] {
-      const bool yade_only =
-          args->peers.empty() || (args->peers.size() == 1 && args->peers[0] == "yade");
-      if (yade_only && has_mesh_body(args->o.scene_file)) {
-        return yade_polyhedra_crosscheck(args->o.scene_file, args->o.out,
-                                         args->yade.empty() ? "yade" : args->yade,
-                                         ASPERITY_YADE_SCRIPT, args->o.max_rel_diff, args->o.quiet);
-      }
       peers::CrosscheckOptions o = args->o;
       if (!args->peers.empty()) o.peers = args->peers;
       for (const auto& [peer, exe] : {std::pair{"yade", args->yade},

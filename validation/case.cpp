@@ -9,6 +9,7 @@
 #include "contact/hertz_impact.hpp"
 #include "core/error.hpp"
 #include "io/json_file.hpp"
+#include "run/summary_keys.hpp"
 #include "scene/scene_json.hpp"
 
 namespace asperity::validation {
@@ -61,68 +62,12 @@ std::optional<double> summary_number(const nlohmann::ordered_json& summary,
   return it->get<double>();
 }
 
-// The scalar keys the runners write into summary.json (solver/run/, docs/contract.md): a case can
-// check only these, and a misspelt quantity is bad input before anything runs, not a failed check
-// after the run. A new summary key a case checks is added here.
-constexpr std::string_view kCheckable[] = {"angular_velocity_change",
-                                           "assumed_approach_speed",
-                                           "auto_status",
-                                           "contact_duration",
-                                           "contact_evaluations",
-                                           "contact_law",
-                                           "contact_updates",
-                                           "contacts_touching",
-                                           "cpu_seconds",
-                                           "dt",
-                                           "dt_contact",
-                                           "dt_critical_predicted",
-                                           "dt_element",
-                                           "dt_limited_by",
-                                           "dt_rayleigh",
-                                           "dt_safety",
-                                           "dt_stable_max_measured",
-                                           "ended_by",
-                                           "energy_drift",
-                                           "final_speed",
-                                           "first_contact_time",
-                                           "first_unstable_factor",
-                                           "friction",
-                                           "impulse",
-                                           "incident_angle_deg",
-                                           "max_overlap",
-                                           "max_penetration_ratio",
-                                           "model",
-                                           "neighbour_rebuilds",
-                                           "normal_velocity_in",
-                                           "normal_velocity_out",
-                                           "peak_force",
-                                           "penalty",
-                                           "penalty_alpha",
-                                           "predicted_over_measured",
-                                           "rebound_angle_deg",
-                                           "reference_factor",
-                                           "reference_impulse",
-                                           "reference_peak_force",
-                                           "reference_status",
-                                           "restitution",
-                                           "simulated_time",
-                                           "slip_ratio",
-                                           "slip_velocity_in",
-                                           "slip_velocity_out",
-                                           "spin_in",
-                                           "spin_out",
-                                           "stable_factor_max",
-                                           "status",
-                                           "status_at_largest_factor",
-                                           "steps",
-                                           "surface_tets",
-                                           "sweep_cpu_seconds",
-                                           "tangential_restitution",
-                                           "tangential_speed_out",
-                                           "tangential_velocity_in",
-                                           "tangential_velocity_out",
-                                           "tets",
-                                           "wall_seconds"};
+// The summary keys a case may check (run/summary_keys.hpp, documented in docs/scenes.md): a
+// misspelt quantity is bad input before anything runs, not a failed check after the run.
+const std::vector<std::string_view>& checkable_keys() {
+  static const std::vector<std::string_view> keys = run::summary_keys::checkable();
+  return keys;
+}
 
 }  // namespace
 
@@ -185,8 +130,9 @@ CaseDef load_case(const std::filesystem::path& file) {
   std::optional<contact::HertzImpact> hertz;
   for (const auto& [quantity, spec] : ex.value().items()) {
     const JsonReader e(spec, file, "expected." + quantity);
-    if (std::find(std::begin(kCheckable), std::end(kCheckable), quantity) == std::end(kCheckable)) {
-      const std::string near = io::closest_key(quantity, kCheckable);
+    const std::vector<std::string_view>& checkable = checkable_keys();
+    if (std::find(checkable.begin(), checkable.end(), quantity) == checkable.end()) {
+      const std::string near = io::closest_key(quantity, checkable);
       ex.fail(quantity, "not a quantity summary.json reports" +
                             (near.empty() ? std::string() : " (did you mean \"" + near + "\"?)"));
     }

@@ -203,7 +203,9 @@ BodyOverlap& overlap_of(World& w, std::vector<BodyOverlap>& now, int a, int b) {
   // far-away slab nodes), so the terms |x − o| · area stay of the size of the bodies.
   o.origin = reference_point(w, w.bodies[a].kind == BodyKind::fixed ? b : a);
   for (const BodyOverlap& old : w.overlaps) {
-    if (old.a == a && old.b == b) o.energy = old.energy, o.volume = old.volume, o.slope = old.slope;
+    if (old.a == a && old.b == b) {
+      o.energy = old.energy, o.volume = old.volume, o.slope = old.slope, o.spring = old.spring;
+    }
   }
   now.push_back(o);
   return now.back();
@@ -220,12 +222,45 @@ void clip_owned_faces(const World& w, int owner, const contact::TetNodes& target
   }
 }
 
+// A body's velocity at point x, m/s (zero for a fixed body).
+Vec3 velocity_at(const World& w, int body, const Vec3& x) {
+  const Body& b = w.bodies[body];
+  if (b.kind != BodyKind::rigid) return Vec3::Zero();
+  const RigidBody& rb = w.rigid[b.rigid];
+  return rb.velocity + rb.omega.cross(x - rb.centre);
+}
+
+// Volume laws' Coulomb friction on body a of the overlap `o` (N), its spring carried in o: the
+// tangential spring k_t with the cap μ |F_n| (contact/tangential_spring.hpp) on the slip of a
+// against b at the overlap's centroid; its stored energy joins the contact energy and its sliding
+// work the dissipated energy. Zero without friction.
+Vec3 volume_friction(World& w, BodyOverlap& o, const Vec3& point, const Vec3& normal_force_a,
+                     double dt) {
+  const double fn = normal_force_a.norm();
+  if (!(w.friction > 0) || !(fn > 0)) {
+    o.spring.setZero();
+    return Vec3::Zero();
+  }
+  const Vec3 n = normal_force_a / fn;
+  const Vec3 vr = velocity_at(w, o.a, point) - velocity_at(w, o.b, point);
+  const contact::TangentialForce ft = contact::tangential_spring(
+      contact::rotate_into_tangent_plane(o.spring, n), vr - vr.dot(n) * n, dt, fn,
+      {.stiffness = w.kt, .damping = 0, .friction = w.friction});
+  o.spring = ft.spring;
+  w.contact_energy += ft.energy;
+  w.dissipated += ft.dissipated;
+  return ft.force;
+}
+
 // Volume laws: every candidate pair of tetrahedra adds its clipped surface integrals to its body
 // pair; each body pair in contact then gets F_A = −s S_A with s = W'(V) (volume-hertz) or
 // k_v V / |S_A| (volume-linear), and the torque −s M_A about A's centre (volume-hertz: the exact
 // gradient) or that of F_A at the overlap's centroid (volume-linear, as YADE applies it)
-// (contact/overlap_volume.hpp).
-void volume_contact_forces(World& w) {
+// (contact/overlap_volume.hpp). With friction, a tangential spring k_t and a Coulomb cap μ |F_n|
+// at the overlap's centroid (contact/tangential_spring.hpp), on the relative velocity of the two
+// bodies there: the friction of YADE's Law2_PolyhedraGeom_PolyhedraPhys_Volumetric (its ks,
+// its shear increment from the relative velocity at the contact point, its cap).
+void volume_contact_forces(World& w, double dt) {
   w.contact_energy = 0;
   w.contacts.reset(static_cast<int>(w.bodies.size()));
   w.penetration = 0;
@@ -246,7 +281,7 @@ void volume_contact_forces(World& w) {
     const contact::Overlap ov = contact::combine(o.side_a, o.side_b, o.origin);
     const double area = ov.area.norm();
     if (!(ov.volume > 0) || !(area > 0)) {
-      o.energy = 0, o.volume = 0, o.slope = 0;
+      o.energy = 0, o.volume = 0, o.slope = 0, o.spring.setZero();
       continue;
     }
     ++w.contacts_touching;
@@ -268,12 +303,15 @@ void volume_contact_forces(World& w) {
     o.slope = slope;
     const Vec3 force_a = -slope * o.side_a.area;
     const Vec3 force_b = -slope * o.side_b.area;
-    for (const auto& [body, side, force] :
-         {std::tuple{o.a, &o.side_a, force_a}, std::tuple{o.b, &o.side_b, force_b}}) {
+    const Vec3 friction_a = volume_friction(w, o, ov.centroid, force_a, dt);
+    for (const auto& [body, side, force, tangential] :
+         {std::tuple{o.a, &o.side_a, force_a, friction_a},
+          std::tuple{o.b, &o.side_b, force_b, Vec3(-friction_a)}}) {
       const Body& bd = w.bodies[body];
       if (bd.kind != BodyKind::rigid) continue;
       RigidBody& rb = w.rigid[bd.rigid];
-      rb.volume_force += force;
+      rb.volume_force += force + tangential;
+      rb.volume_torque += (ov.centroid - rb.centre).cross(tangential);
       if (w.law == ContactLaw::volume_hertz) {
         // The gradient of W under rotation: −W' M(c), M(c) = M(o) − (c − o) × S.
         rb.volume_torque -= slope * (side->moment - (rb.centre - o.origin).cross(side->area));
@@ -285,7 +323,7 @@ void volume_contact_forces(World& w) {
     w.contact_energy += o.energy;
     // The overlap's mean depth V/|S| (m) is its signed overlap: linear in the approach for a
     // sphere, a vertex, an edge and a face alike, so the contact's start and end interpolate well.
-    w.contacts.add(o.a, o.b, force_a, force_a, ov.volume / area);
+    w.contacts.add(o.a, o.b, Vec3(force_a + friction_a), force_a, ov.volume / area);
   }
   w.overlaps = std::move(now);
 }
@@ -309,7 +347,7 @@ void compute_forces(World& w, double dt) {
   if (w.law == ContactLaw::potential) {
     contact_forces(w, dt);
   } else {
-    volume_contact_forces(w);
+    volume_contact_forces(w, dt);
   }
   if (w.keep_contact_force) w.f_contact = w.f;  // f held the contact forces only, so far
   const std::uint64_t t1 = ticks();
@@ -609,6 +647,7 @@ World make_world(const WorldDef& def) {
   w.friction = def.contact.friction;
   w.law = def.contact.law;
   w.kv = def.contact.kv;
+  w.kt = def.contact.kt;
   if (w.law == ContactLaw::volume_linear && !(w.kv > 0)) {
     throw InputError("contact: volume-linear needs a stiffness kv > 0 (N/m³)");
   }

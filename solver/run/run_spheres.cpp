@@ -8,7 +8,6 @@
 
 #include "core/error.hpp"
 #include "core/format.hpp"
-#include "core/ticks.hpp"
 #include "dem/sphere_world.hpp"
 #include "dem/time_step.hpp"
 #include "run/rebound.hpp"
@@ -198,26 +197,11 @@ RunResult run_spheres(const scene::SceneDef& s, const RunOptions& options) {
 
   // ParaView frames: an observer of the loop.
   std::optional<SphereSeries> frames;
-  StepObserver observer;
-  if (options.vtk && options.vtk->every > 0) {
-    frames.emplace(w, *options.vtk);
-    observer = [&](long k, double force, bool last) { frames->after_step(w, k, force, last); };
-  }
+  if (options.vtk && options.vtk->every > 0) frames.emplace(w, *options.vtk);
 
   RunResult result;
-  const std::uint64_t ticks0 = ticks();
-  const LoopOutcome loop = time_loop(m, s, options, step, result, observer);
-  if (frames) {
-    frames->finish(w);
-    result.vtk = frames->stats();
-  }
-  const double per_tick = seconds_per_tick(loop.wall_seconds, ticks() - ticks0);
-  result.status = loop.status;
-  result.message = loop.message;
-
+  const LoopOutcome loop = run_model(m, frames, id, s, options, step, result);
   auto& j = result.summary;
-  write_measures(j, id, loop.status, loop.message, loop.impact, w.time, loop.restitution.value(),
-                 loop.energy_drift);
   // Oblique-impact rebound of the recorded sphere (run/rebound.hpp; Chung & Ooi tests 4–8).
   if (const std::optional<FirstImpact> impact = first_impact(s)) {
     auto motion = [&](int body) {
@@ -239,7 +223,7 @@ RunResult run_spheres(const scene::SceneDef& s, const RunOptions& options) {
   j["dt_contact"] = std::isfinite(crit.contact) ? SummaryJson(crit.contact) : SummaryJson();
   j["assumed_approach_speed"] = crit.approach_speed;
   write_run(j, w.steps, w.time, loop.ended_by_separation, loop.cpu_seconds, loop.wall_seconds);
-  j["profile"] = profile_json(w.profile, per_tick, false);
+  j["profile"] = profile_json(w.profile, loop.seconds_per_tick, false);
   j["neighbour_rebuilds"] = w.rebuilds;
   j["contact_updates"] = w.contact_updates;
   j["damping"] = {{"form", s.contact.law == scene::ContactLaw::linear

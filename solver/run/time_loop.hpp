@@ -10,18 +10,23 @@
 //   EnergyBalance energy(); bool finite(); double time(); long check_every()
 //   int record                         the recorded body's index in contacts()
 // An observer (ParaView frames, run/vtk_series.hpp) is called after every completed step; it only
-// reads the model, so it changes no result.
+// reads the model, so it changes no result. run_model wraps the loop in what every runner does
+// around it (frames, status, the summary's core), so a runner adds only its model's keys.
 #pragma once
 
+#include <cstdint>
 #include <functional>
+#include <optional>
 
 #include "core/body_contacts.hpp"
 #include "core/clock.hpp"
 #include "core/energy.hpp"
+#include "core/ticks.hpp"
 #include "run/impact_measures.hpp"
 #include "run/run_monitor.hpp"
 #include "run/run_scene.hpp"
 #include "run/step_policy.hpp"
+#include "run/summary.hpp"
 #include "scene/scene.hpp"
 
 namespace asperity::run {
@@ -36,6 +41,9 @@ struct LoopOutcome {
   double energy_drift = 0;
   bool ended_by_separation = false;
   double cpu_seconds = 0, wall_seconds = 0;
+  // The loop's wall time over its tick count (core/ticks.hpp): turns the profile's ticks into
+  // seconds.
+  double seconds_per_tick = 0;
 };
 
 template <class Model>
@@ -45,6 +53,7 @@ LoopOutcome time_loop(Model& m, const scene::SceneDef& s, const RunOptions& opti
   LoopOutcome out;
   const auto wall0 = std::chrono::steady_clock::now();
   const double cpu0 = thread_cpu_seconds();
+  const std::uint64_t ticks0 = ticks();
   const int rec = m.record;
   auto sample_force = [&] { return Vec3(m.contacts().force.col(rec)); };
   auto sample_overlap = [&] { return m.contacts().overlap[static_cast<std::size_t>(rec)]; };
@@ -89,13 +98,39 @@ LoopOutcome time_loop(Model& m, const scene::SceneDef& s, const RunOptions& opti
     if (out.ended_by_separation) break;
   }
   monitor.finish();
+  const std::uint64_t tick_count = ticks() - ticks0;
   out.cpu_seconds = thread_cpu_seconds() - cpu0;
   out.wall_seconds =
       std::chrono::duration<double>(std::chrono::steady_clock::now() - wall0).count();
+  out.seconds_per_tick = seconds_per_tick(out.wall_seconds, tick_count);
   out.status = monitor.status(out.impact.first_contact_time >= 0);
   out.message = monitor.message();
   out.energy_drift = monitor.drift();
   return out;
+}
+
+// The loop with what every runner does around it, written once: the ParaView frames (`frames`,
+// empty when none were asked for) observe every step and are finished after the last, the
+// status is copied into the result, and the summary's core (run/summary.hpp: status, identity,
+// impact measures, restitution, energy drift) is written. The model's own keys follow.
+template <class Model, class Series>
+LoopOutcome run_model(Model& m, std::optional<Series>& frames, const RunIdentity& id,
+                      const scene::SceneDef& s, const RunOptions& options, const StepChoice& step,
+                      RunResult& result) {
+  StepObserver observer;
+  if (frames) {
+    observer = [&](long k, double force, bool last) { frames->after_step(m.w, k, force, last); };
+  }
+  const LoopOutcome loop = time_loop(m, s, options, step, result, observer);
+  if (frames) {
+    frames->finish(m.w);
+    result.vtk = frames->stats();
+  }
+  result.status = loop.status;
+  result.message = loop.message;
+  write_measures(result.summary, id, loop.status, loop.message, loop.impact, m.time(),
+                 loop.restitution.value(), loop.energy_drift);
+  return loop;
 }
 
 }  // namespace asperity::run

@@ -94,7 +94,9 @@ ContactDef parse_contact(const JsonReader& c) {
   if (c.has("kv") && !out.kv) c.fail("kv", "only the volume-linear law takes kv");
   if (c.has("kn") && !out.kn) c.fail("kn", "only the linear law takes kn");
   if (c.has("kt")) {
-    if (out.law != ContactLaw::linear) c.fail("kt", "only the linear law takes kt");
+    if (out.law != ContactLaw::linear && out.law != ContactLaw::volume_linear &&
+        out.law != ContactLaw::volume_hertz)
+      c.fail("kt", "only the linear and volume laws take kt");
     out.kt = c.positive("kt");
   }
   if (c.has("penalty")) {

@@ -1,16 +1,7 @@
 #!/usr/bin/env bash
 # Checks the contract's exit codes and outputs by running the program as a user would.
 set -u
-bin=$1
-src=$(cd "$2" && pwd)
-work=$(mktemp -d)
-trap 'rm -rf "$work"' EXIT
-passed=0
-failed=0
-check() {  # check NAME CONDITION...
-  local name=$1; shift
-  if "$@"; then passed=$((passed + 1)); else failed=$((failed + 1)); echo "FAIL: $name"; fi
-}
+source "$(dirname "$0")/checks.sh"
 case_scene() {  # the scene of a validation case, as a scene file
   /usr/bin/python3 -c "import json,sys; print(json.dumps(json.load(open(sys.argv[1]))['scene']))" "$1"
 }
@@ -100,5 +91,4 @@ check "bad mesh file exits 2" test $? -eq 2
 check "bad mesh names the file" grep -q "broken.stl" "$work/badmesh.err"
 check "nothing written for a bad mesh" test ! -e "$work/badmesh"
 
-echo "$passed passed, $failed failed"
-test "$failed" -eq 0
+report_checks

@@ -5,20 +5,11 @@
 # interrupted run or study leaves nothing that looks complete and no lock.
 # Usage: hostile.sh ASPERITY_BINARY SOURCE_DIR
 set -u
-bin=$(realpath "$1")
-src=$(cd "$2" && pwd)
-work=$(mktemp -d)
-trap 'rm -rf "$work"' EXIT
+source "$(dirname "$0")/checks.sh"
 in=$work/in    # inputs, made before each check
 out=$work/o    # every --out lies under here; a bad input must leave no folder
 cwd=$work/cwd  # the program's working folder: nothing may appear in it
 mkdir -p "$in" "$out" "$cwd"
-passed=0
-failed=0
-check() {  # check NAME CONDITION...
-  local name=$1; shift
-  if "$@"; then passed=$((passed + 1)); else failed=$((failed + 1)); echo "FAIL: $name"; fi
-}
 # Memory cap for one run (bounded memory): 2 GiB of address space. AddressSanitizer reserves
 # terabytes of address space up front, so a sanitized binary runs uncapped (its own checks apply).
 if ldd "$bin" 2>/dev/null | grep -q libasan; then mem_kb=unlimited; else mem_kb=$((2 * 1024 * 1024)); fi
@@ -117,6 +108,44 @@ bad "run on a validation case" "hertz-glass-sphere-plane-1ms.json: this is a val
 bad "validate on a scene" "good.json: this is a scene, not a validation case.*asperity run" \
   validate "$in/good.json" --out "$out/v"
 bad "unknown command" "unknown command \"bogus\"" bogus
+
+# --- 10. The volume laws of rigid polyhedra (issue 13): volume-linear without kv or with kv <= 0 in
+# run and crosscheck; friction without its tangential stiffness kt; a non-convex body and volume-hertz to the YADE cross-check (YADE's Polyhedra
+# is the convex hull of its vertices; volume-hertz has no YADE law).
+poly_case=$src/validation/cases/polyhedra/volume-linear-cube-face-straight.json
+/usr/bin/python3 -c "
+import json, os, sys
+s = json.load(open(sys.argv[1]))['scene']
+mesh = s['bodies'][0]['shape']
+mesh['file'] = os.path.normpath(os.path.join(os.path.dirname(sys.argv[1]), mesh['file']))
+json.dump(s, open(sys.argv[2], 'w'))" "$poly_case" "$in/poly.json"
+poly_variant() {  # poly_variant NAME PYTHON-STATEMENT: $in/NAME.json = poly.json with s changed
+  /usr/bin/python3 - "$in/poly.json" "$in/$1.json" "$2" <<'PY'
+import json, sys
+s = json.load(open(sys.argv[1]))
+exec(sys.argv[3])
+json.dump(s, open(sys.argv[2], "w"))
+PY
+}
+poly_variant nokv "del s['contact']['kv']"
+bad "volume-linear without kv" "nokv.json: contact\.kv: volume-linear needs kv" run "$in/nokv.json" --out "$out/r"
+bad "volume-linear without kv, crosscheck" "nokv.json: contact\.kv: volume-linear needs kv" \
+  crosscheck "$in/nokv.json" --out "$out/c"
+for kv in 0 -1e11; do
+  poly_variant "kv$kv" "s['contact']['kv'] = $kv"
+  bad "kv = $kv" "kv$kv.json: contact\.kv: .*(positive|> 0)" run "$in/kv$kv.json" --out "$out/r"
+  bad "kv = $kv, crosscheck" "kv$kv.json: contact\.kv: .*(positive|> 0)" \
+    crosscheck "$in/kv$kv.json" --out "$out/c"
+done
+poly_variant nokt "s['contact']['friction'] = 0.3"
+bad "volume-law friction without kt" "nokt.json: contact\.kt: the volume laws' friction \(contact\.friction 0\.3\) needs kt" \
+  run "$in/nokt.json" --out "$out/r"
+poly_variant concave "s['bodies'][0]['shape']['file'] = '$src/data/meshes/particle-seed3-320.off'"
+bad "non-convex body to YADE" "concave.json: bodies\[0\] \"particle\": shape: not convex" \
+  crosscheck "$in/concave.json" --out "$out/c"
+poly_variant vhertz "s['contact'] = {'law': 'volume-hertz'}"
+bad "volume-hertz to YADE" "vhertz.json: contact\.law: yade: .*\"volume-hertz\" has no YADE counterpart" \
+  crosscheck "$in/vhertz.json" --out "$out/c"
 
 # --- 3. Case names: a case writes into --out/cases/NAME, so NAME is a plain unique name
 case_variant() {  # case_variant NAME PYTHON-STATEMENT: $in/cases/NAME.json = the Hertz case, c changed
@@ -282,5 +311,4 @@ check "SIGINT removes study.lock" test ! -e "$work/study-int/study.lock"
 check "SIGINT: no study_summary.json" test ! -e "$work/study-int/study_summary.json"
 check "SIGINT: no *.partial-* file" test -z "$(find "$work/study-int" -name '*.partial-*')"
 
-echo "$passed passed, $failed failed"
-test "$failed" -eq 0
+report_checks

@@ -5,16 +5,7 @@
 # with readable messages, and the example solver: exact passes the Hertz cases, x1.05 fails them.
 # Needs the Debian packages yade, lammps and liggghts (deps/debian-packages.txt).
 set -u
-bin=$1
-src=$(cd "$2" && pwd)
-work=$(mktemp -d)
-trap 'rm -rf "$work"' EXIT
-passed=0
-failed=0
-check() {  # check NAME CONDITION...
-  local name=$1; shift
-  if "$@"; then passed=$((passed + 1)); else failed=$((failed + 1)); echo "FAIL: $name"; fi
-}
+source "$(dirname "$0")/checks.sh"
 lines() { wc -l < "$1"; }
 plane=$src/validation/cases/record/record-on-plane-normal.json
 box=$src/validation/cases/record/record-on-box-oblique.json
@@ -77,5 +68,4 @@ check "failing solver: JUnit error" grep -q '<error message="--solver-cmd: exite
 check "silent solver exits 1" test $? -eq 1
 check "silent solver: no summary.json named" grep -q "wrote no summary.json for record-on-plane-normal" "$work/s4.err"
 
-echo "$passed passed, $failed failed"
-test "$failed" -eq 0
+report_checks

@@ -5,6 +5,8 @@
 
 #include <cmath>
 #include <numbers>
+#include <string>
+#include <utility>
 
 #include "fdem/fdem_world.hpp"
 #include "fdem/structured_mesh.hpp"
@@ -12,13 +14,18 @@
 
 namespace asperity::fdem::scenes {
 
-inline Material rubbery() {
-  return {.name = "soft",
-          .density = 1000,
+// A frictionless elastic material of E = 10 MPa, ν = 0.3: soft enough that a contact spans
+// many steps at the critical one.
+inline Material elastic(std::string name, double density) {
+  return {.name = std::move(name),
+          .density = density,
           .young = 1e7,
           .poisson = 0.3,
           .friction = 0,
           .restitution = 1};
+}
+inline Material rubbery() {
+  return elastic("soft", 1000);
 }
 
 inline TetMesh translated(TetMesh m, const Vec3& d) {
@@ -34,6 +41,14 @@ inline TetMesh mirrored_x(TetMesh m) {
   return m;
 }
 
+// A fixed block whose top is z = 0, wide enough for anything of size `size` near the origin.
+inline BodyDef block(double size, const Material& m) {
+  return {.name = "block",
+          .kind = BodyKind::fixed,
+          .mesh = box_mesh(Vec3(-2 * size, -2 * size, -size), Vec3(2 * size, 2 * size, 0), 1, 1, 1),
+          .material = m};
+}
+
 // A ball of radius r (n cells per cube side) just above a fixed block whose top is z = 0,
 // moving down at speed v. `gap` is the initial clearance, m.
 inline WorldDef ball_on_block(double r, int n, double v, BodyKind kind, const Material& mat,
@@ -44,10 +59,7 @@ inline WorldDef ball_on_block(double r, int n, double v, BodyKind kind, const Ma
                         .mesh = translated(ball_mesh(r, n), Vec3(0, 0, r + gap)),
                         .material = mat,
                         .velocity = Vec3(0, 0, -v)});
-  def.bodies.push_back({.name = "block",
-                        .kind = BodyKind::fixed,
-                        .mesh = box_mesh(Vec3(-2 * r, -2 * r, -r), Vec3(2 * r, 2 * r, 0), 1, 1, 1),
-                        .material = mat});
+  def.bodies.push_back(block(r, mat));
   return def;
 }
 
@@ -74,9 +86,12 @@ struct Impact {
   double dt = 0;
 };
 
-// Steps until the recorded body has been in contact and separated again (or t_max), at
-// dt = safety × the predicted critical step.
-inline Impact run_impact(World& w, double t_max, double safety = 0.5) {
+// Steps at dt = safety × the predicted critical step until the recorded body (body 0) has been
+// in contact and separated again (or t_max): the peak force, the energy drift and the velocities
+// before and after. `touching(out)` is called after every step with a contact force, e.g. to
+// measure the duration.
+template <class Touching>
+Impact step_impact(World& w, double t_max, double safety, Touching touching) {
   Impact out;
   out.dt = safety * critical_step(w).critical;
   w.want_energy = true;
@@ -90,7 +105,7 @@ inline Impact run_impact(World& w, double t_max, double safety = 0.5) {
     out.drift = std::max(out.drift, std::abs(energy(w).total() - e0) / e0);
     if (f > 0) {
       touched = true;
-      out.duration += out.dt;
+      touching(out);
     } else if (touched) {
       break;
     }
@@ -98,6 +113,11 @@ inline Impact run_impact(World& w, double t_max, double safety = 0.5) {
   out.v_after = body_velocity(w, 0);
   out.steps = w.steps;
   return out;
+}
+
+// The impact with its duration counted in whole steps with a force.
+inline Impact run_impact(World& w, double t_max, double safety = 0.5) {
+  return step_impact(w, t_max, safety, [](Impact& out) { out.duration += out.dt; });
 }
 
 }  // namespace asperity::fdem::scenes

@@ -12,18 +12,14 @@
 #include "fdem/fdem_world.hpp"
 #include "fdem/structured_mesh.hpp"
 #include "fdem/time_step.hpp"
+#include "fdem_scenes.hpp"
 #include "geometry/geodesic_sphere.hpp"
 #include "geometry/tetrahedralize.hpp"
 
 namespace asperity::fdem::volume_scenes {
 
 inline Material stone() {
-  return {.name = "stone",
-          .density = 2500,
-          .young = 1e7,
-          .poisson = 0.3,
-          .friction = 0,
-          .restitution = 1};
+  return scenes::elastic("stone", 2500);
 }
 
 // Faceted sphere: radius r, geodesic frequency n (20 n² faces), centred at `centre`,
@@ -53,64 +49,36 @@ inline Mat3 edge_down() {
   return Eigen::AngleAxisd(std::numbers::pi / 4, Vec3::UnitX()).toRotationMatrix();
 }
 
-// A fixed block whose top is z = 0, wide enough for anything of size `size` near the origin.
-inline BodyDef block(double size, const Material& m) {
-  return {.name = "block",
-          .kind = BodyKind::fixed,
-          .mesh = box_mesh(Vec3(-2 * size, -2 * size, -size), Vec3(2 * size, 2 * size, 0), 1, 1, 1),
-          .material = m};
-}
+using scenes::block;
 
 // Lowest z of a mesh.
 inline double lowest(const TetMesh& m) {
   return m.nodes.row(2).minCoeff();
 }
 
-struct Impact {
-  double peak_force = 0;  // N
-  double duration = 0;    // s, steps with a non-zero force
-  double drift = 0;       // largest |E − E₀| / E₀
-  Vec3 v_before = Vec3::Zero(), v_after = Vec3::Zero();
-  long steps = 0;
-  double dt = 0;
-};
+using scenes::Impact;
 
-// Steps at dt = safety × the predicted step until the recorded body has touched and separated.
-// The duration counts whole steps with a force plus the fractions before the first and after
-// the last one found by linear interpolation of the overlap's mean depth V/|S| (World::
-// contacts.overlap), which is linear in time at both ends. The recorded body is body 0.
+// The impact at dt = safety × the predicted step (fdem_scenes.hpp, step_impact). The duration
+// counts whole steps with a force plus the fractions before the first and after the last one
+// found by linear interpolation of the overlap's mean depth V/|S| (World::contacts.overlap),
+// which is linear in time at both ends. The recorded body is body 0.
 inline Impact run_impact(World& w, double t_max, double safety = 0.01) {
-  Impact out;
-  out.dt = safety * critical_step(w).critical;
-  w.want_energy = true;
-  const double e0 = energy(w).total();
-  out.v_before = body_velocity(w, 0);
   long touching_steps = 0;
   double t_first = 0, d_first = 0, d_second = 0, d_prev = 0, d_last = 0, d_before_last = 0;
-  while (w.time < t_max && w.failure.empty()) {
-    step(w, out.dt);
-    const double f = w.contacts.force.col(0).norm();
-    out.peak_force = std::max(out.peak_force, f);
-    out.drift = std::max(out.drift, std::abs(energy(w).total() - e0) / e0);
-    if (f > 0) {
-      const double d = w.contacts.overlap[0];
-      if (touching_steps == 0) t_first = w.time, d_first = d;
-      if (touching_steps == 1) d_second = d;
-      d_before_last = d_prev, d_last = d;
-      d_prev = d;
-      ++touching_steps;
-    } else if (touching_steps > 0) {
-      break;
-    }
-  }
+  Impact out = scenes::step_impact(w, t_max, safety, [&](const Impact&) {
+    const double d = w.contacts.overlap[0];
+    if (touching_steps == 0) t_first = w.time, d_first = d;
+    if (touching_steps == 1) d_second = d;
+    d_before_last = d_prev, d_last = d;
+    d_prev = d;
+    ++touching_steps;
+  });
   if (touching_steps >= 3) {
     const double start = t_first - out.dt * d_first / (d_second - d_first);
     const double end = t_first + out.dt * static_cast<double>(touching_steps - 1) +
                        out.dt * d_last / (d_before_last - d_last);
     out.duration = end - start;
   }
-  out.v_after = body_velocity(w, 0);
-  out.steps = w.steps;
   return out;
 }
 

@@ -16,7 +16,7 @@ failed = []
 if c["status"]["asperity"] != "ok" or c["status"]["yade"] != "ok":
     failed.append(f"status {c['status']}")
 for key, tol in (("impulse", a.impulse), ("peak_force", a.peak), ("contact_duration", a.duration)):
-    d = c[key]["rel_diff"]
+    d = c[key]["rel_diff"]["yade"]
     ok = d is not None and abs(d) <= tol
     print(f"{key}: asperity {c[key]['asperity']}, YADE {c[key]['yade']}, rel diff {d} (tolerance {tol})")
     if not ok:

@@ -4,6 +4,7 @@
 // measuring's. docs/crosscheck.md has each peer's mapping and every systematic difference.
 #include "crosscheck.hpp"
 
+#include <algorithm>
 #include <cmath>
 #include <fstream>
 #include <iostream>
@@ -30,12 +31,19 @@ scene::SceneDef load_scene_or_case(const fs::path& file) {
 namespace {
 
 constexpr const char* kGated[] = {"peak_force", "impulse", "contact_duration"};
-constexpr const char* kOther[] = {"max_overlap",         "first_contact_time",
-                                  "restitution",         "tangential_restitution",
-                                  "slip_ratio",          "spin_out",
-                                  "rebound_angle_deg",   "slip_velocity_out",
-                                  "normal_velocity_out", "angular_velocity_change",
-                                  "tangential_speed_out"};
+constexpr const char* kOther[] = {"max_overlap",
+                                  "first_contact_time",
+                                  "restitution",
+                                  "tangential_restitution",
+                                  "slip_ratio",
+                                  "spin_out",
+                                  "rebound_angle_deg",
+                                  "slip_velocity_out",
+                                  "normal_velocity_out",
+                                  "angular_velocity_change",
+                                  "tangential_speed_out",
+                                  "final_speed",
+                                  "final_spin"};
 
 Json rel_diff(const Json& a, const Json& p) {
   if (!a.is_number() || !p.is_number()) return nullptr;
@@ -149,6 +157,22 @@ int crosscheck(const CrosscheckOptions& o) {
       c["stiffness_rel_diff_max"][name] = summary.at("stiffness_rel_diff_max");
   }
   c["versions"] = versions;
+  // Cost per step, side by side, where a peer times its kinds of step (YADE's polyhedra: wall
+  // seconds of free flight, in contact, the first and last contact steps): asperity's mean CPU per
+  // step and the wall seconds of its contact and broad phases over the run (its profile).
+  Json steps_cost = Json::object();
+  for (const auto& [name, summary] : done)
+    if (summary.contains("step_seconds")) steps_cost[name] = summary.at("step_seconds");
+  if (!steps_cost.empty()) {
+    const Json& prof = a.summary.contains("profile") ? a.summary.at("profile") : Json();
+    Json mine{{"cpu_mean", cpu_a / std::max(1.0, static_cast<double>(resolved.steps))}};
+    if (prof.is_object()) {
+      mine["contact_phase_wall"] = prof.value("contact", 0.0);
+      mine["broad_phase_wall"] = prof.value("broad_phase", 0.0);
+    }
+    c["step_seconds"] = {{"asperity", mine}};
+    for (const auto& [name, v] : steps_cost.items()) c["step_seconds"][name] = v;
+  }
 
   // The gate: per peer, the three contract quantities within max_rel_diff and the same status.
   std::vector<validation::JUnitCase> junit;

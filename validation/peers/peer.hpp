@@ -36,14 +36,20 @@ struct Resolved {
 };
 
 // One sample per step, t = 0 included. Forces are the recorded body's total contact force (no
-// gravity); bodies are the scene's free spheres in scene order (fixed bodies stay where the scene
-// puts them).
+// gravity); bodies are the scene's traced bodies in scene order (`traced_bodies`; fixed bodies
+// stay where the scene puts them).
 struct PeerTrace {
   std::vector<double> t;                // s
   std::vector<Vec3> force;              // N, on the recorded body
-  std::vector<std::vector<Vec3>> x, v;  // [sample][free sphere], m and m/s
-  std::vector<Vec3> final_w;            // rad/s, each free sphere's at the end
-  double cpu_seconds = 0;               // the peer's engine loop alone, no recorder
+  std::vector<std::vector<Vec3>> x, v;  // [sample][traced body], m and m/s
+  std::vector<Vec3> final_w;            // rad/s, each traced body's at the end
+  // Set by a peer that measures the recorded body's contact itself (YADE's polyhedra, whose
+  // overlap asperity does not recompute from the peer's positions), one per sample: the signed
+  // depth (m; −1e300 while apart) and the unit normal into the recorded body. Empty: measured
+  // from the free spheres' positions with the geometry of dem/sphere_world.cpp.
+  std::vector<double> overlap;
+  std::vector<Vec3> normal;
+  double cpu_seconds = 0;  // the peer's engine loop alone, no recorder
   double wall_seconds = 0;
   std::string version;                                              // the peer's own version string
   nlohmann::ordered_json extra = nlohmann::ordered_json::object();  // e.g. YADE's stiffness
@@ -72,6 +78,10 @@ std::filesystem::path find_executable(const std::string& name);
 // The peer's executable: `override_exe` when given, else its default program. Throws InputError
 // (usage: exit 2) when it is not installed, naming the Debian package.
 std::filesystem::path peer_executable(const Adapter& a, const std::string& override_exe);
+
+// The bodies a trace carries, in scene order: the free spheres, or, when the peer measures the
+// contact itself (`PeerTrace::overlap`), every free body (rigid polyhedra).
+std::vector<int> traced_bodies(const scene::SceneDef& scene, bool peer_measures_contact);
 
 // The peer's summary.json and force.csv, measured by run/impact_measures.hpp and run/rebound.hpp
 // exactly as asperity's runs are. `every`: the scene's record.every (force.csv rows).

@@ -101,13 +101,24 @@ std::vector<int> free_spheres(const scene::SceneDef& s) {
   return out;
 }
 
-PeerTrace read_trace_csv(const fs::path& file, int free_spheres, const std::string& peer) {
+std::vector<int> traced_bodies(const scene::SceneDef& s, bool peer_measures_contact) {
+  if (!peer_measures_contact) return free_spheres(s);
+  std::vector<int> out;
+  for (std::size_t k = 0; k < s.bodies.size(); ++k) {
+    if (!s.bodies[k].fixed) out.push_back(static_cast<int>(k));
+  }
+  return out;
+}
+
+PeerTrace read_trace_csv(const fs::path& file, int bodies, const std::string& peer,
+                         bool own_contact) {
   std::ifstream in(file);
   if (!in) throw PeerFailure(peer + ": " + file.string() + " was not written");
   std::string line;
   std::getline(in, line);  // header
   PeerTrace tr;
-  const std::size_t columns = 4 + 6 * static_cast<std::size_t>(free_spheres);
+  const std::size_t first_body = own_contact ? 8 : 4;
+  const std::size_t columns = first_body + 6 * static_cast<std::size_t>(bodies);
   std::vector<double> row(columns);
   while (std::getline(in, line)) {
     std::size_t k = 0;
@@ -122,10 +133,14 @@ PeerTrace read_trace_csv(const fs::path& file, int free_spheres, const std::stri
       throw PeerFailure(peer + ": " + file.string() + ": unreadable row \"" + line + "\"");
     tr.t.push_back(row[0]);
     tr.force.emplace_back(row[1], row[2], row[3]);
+    if (own_contact) {
+      tr.overlap.push_back(row[4]);
+      tr.normal.emplace_back(row[5], row[6], row[7]);
+    }
     tr.x.emplace_back();
     tr.v.emplace_back();
-    for (int b = 0; b < free_spheres; ++b) {
-      const double* c = &row[4 + 6 * static_cast<std::size_t>(b)];
+    for (int b = 0; b < bodies; ++b) {
+      const double* c = &row[first_body + 6 * static_cast<std::size_t>(b)];
       tr.x.back().emplace_back(c[0], c[1], c[2]);
       tr.v.back().emplace_back(c[3], c[4], c[5]);
     }
@@ -166,11 +181,14 @@ run::RunResult measure_trace(const scene::SceneDef& s, const Resolved& resolved,
                              const PeerTrace& tr, const std::string& peer) {
   const std::size_t n = tr.t.size();
   if (n == 0) throw PeerFailure(peer + ": recorded no steps");
-  // Free spheres in scene order: the trace's columns.
+  const bool own_contact = !tr.overlap.empty();
+  if (own_contact && (tr.overlap.size() != n || tr.normal.size() != n))
+    throw PeerFailure(peer + ": the trace's overlaps and normals are not one per sample");
+  // The traced bodies in scene order: the trace's columns.
   std::vector<int> free_index(s.bodies.size(), -1);
   std::vector<bool> free(s.bodies.size(), false);
   int nfree = 0;
-  for (int k : free_spheres(s)) {
+  for (int k : traced_bodies(s, own_contact)) {
     free_index[static_cast<std::size_t>(k)] = nfree++;
     free[static_cast<std::size_t>(k)] = true;
   }
@@ -178,7 +196,7 @@ run::RunResult measure_trace(const scene::SceneDef& s, const Resolved& resolved,
     if (tr.x[i].size() != static_cast<std::size_t>(nfree) || tr.v[i].size() != tr.x[i].size())
       throw PeerFailure(peer + ": trace sample " + std::to_string(i) + " has " +
                         std::to_string(tr.x[i].size()) + " bodies, the scene " +
-                        std::to_string(nfree) + " free spheres");
+                        std::to_string(nfree) + " traced bodies");
   }
   const int rec = s.record.body;
   auto pos = [&](std::size_t i, int body) {
@@ -198,6 +216,7 @@ run::RunResult measure_trace(const scene::SceneDef& s, const Resolved& resolved,
     Vec3 n = Vec3::UnitZ();
   };
   auto contact_state = [&](std::size_t i) {
+    if (own_contact) return Sample{tr.overlap[i], tr.normal[i]};
     Sample best;
     auto consider = [&](int sphere, int other, double sign) {
       const double radius =
@@ -261,6 +280,17 @@ run::RunResult measure_trace(const scene::SceneDef& s, const Resolved& resolved,
     };
     run::add_rebound_measures(s, *impact, motion(rec), motion(impact->partner), restitution.ended(),
                               j);
+  }
+  if (const int f = free_index[static_cast<std::size_t>(rec)]; f >= 0) {
+    // The recorded body's final state, the keys asperity's runners report (run_spheres.cpp; a
+    // rigid polyhedron's spin as run_fdem.cpp reports it).
+    const Vec3 v = tr.v[n - 1][static_cast<std::size_t>(f)];
+    const Vec3 w = tr.final_w.at(static_cast<std::size_t>(f));
+    j["final_velocity"] = {v.x(), v.y(), v.z()};
+    j["final_speed"] = v.norm();
+    j["final_angular_velocity"] = {w.x(), w.y(), w.z()};
+    if (std::holds_alternative<scene::MeshShape>(s.bodies[static_cast<std::size_t>(rec)].shape))
+      j["final_spin"] = w.norm();
   }
   j["dt"] = resolved.dt;
   run::write_run(j, resolved.steps, resolved.dt * static_cast<double>(resolved.steps), false,

@@ -2,11 +2,17 @@
 // to DIR/yade/input.json; scene_to_yade.py builds it in YADE, times a plain run, and records the
 // force on the recorded body and the free spheres' motion every step (raw.csv, raw.json). The law
 // mapping, the damping map β = ζ/√6 and the wall R* treatment are in docs/crosscheck.md.
+//
+// Rigid convex polyhedra under volume-linear take YADE's Polyhedra path (yade_polyhedra.py, input
+// from yade_polyhedra_input.cpp): YADE's own overlap (depth V/A and normal) comes back with the
+// trace, since asperity does not recompute a polyhedral intersection from YADE's positions, and
+// raw.json adds the wall time of YADE's free-flight, contact, first and last contact steps.
 #include <fstream>
 
 #include "contact/restitution_damping.hpp"
 #include "core/error.hpp"
 #include "peer_adapters.hpp"
+#include "yade_polyhedra_input.hpp"
 
 #ifndef ASPERITY_YADE_SCRIPT
 #error \
@@ -22,22 +28,36 @@ Json vec(const Vec3& v) {
   return Json::array({v.x(), v.y(), v.z()});
 }
 
+// Rigid polyhedra: a scene with a mesh body, or under a volume law (YADE's Polyhedra path).
+bool polyhedra(const scene::SceneDef& s) {
+  if (s.contact.law == scene::ContactLaw::volume_linear ||
+      s.contact.law == scene::ContactLaw::volume_hertz)
+    return true;
+  for (const scene::BodyDef& b : s.bodies)
+    if (std::holds_alternative<scene::MeshShape>(b.shape)) return true;
+  return false;
+}
+
 // Throws InputError for what YADE's mapping cannot express (the script checks the rest: a plane
 // normal to no axis, a damped linear law).
 void check(const scene::SceneDef& s) {
   const std::string where = s.file.string() + ": ";
+  if (s.contact.law == scene::ContactLaw::potential) {
+    throw InputError(where +
+                     "contact.law: yade: \"potential\" has no YADE counterpart in the cross-check "
+                     "(spheres, planes and boxes with hertz, hertz-mindlin or linear; rigid "
+                     "convex polyhedra with volume-linear)");
+  }
+  if (polyhedra(s)) {
+    // The polyhedra input checks the law, the models and each body's convexity.
+    (void)yade_polyhedra_input(s, 0.0, 0);
+    return;
+  }
   for (std::size_t k = 0; k < s.bodies.size(); ++k) {
     const scene::BodyDef& b = s.bodies[k];
     const std::string at = where + "bodies[" + std::to_string(k) + "] \"" + b.name + "\": ";
     if (b.model != scene::Model::rigid)
       throw InputError(at + "model: yade: the cross-check runs rigid bodies only");
-    if (std::holds_alternative<scene::MeshShape>(b.shape))
-      throw InputError(at + "shape: yade: the cross-check covers spheres, planes and boxes");
-  }
-  if (s.contact.law == scene::ContactLaw::potential) {
-    throw InputError(where +
-                     "contact.law: yade: \"potential\" has no YADE counterpart in the cross-check "
-                     "(spheres, planes and boxes with hertz, hertz-mindlin or linear)");
   }
 }
 
@@ -108,7 +128,9 @@ PeerTrace run(const scene::SceneDef& s, const Resolved& r, const fs::path& exe,
   const fs::path script = ASPERITY_YADE_SCRIPT;
   if (!fs::is_regular_file(script))
     throw PeerFailure("yade: " + script.string() + ": translator script not found");
-  write_file(dir / "input.json", yade_input(s, r).dump(2) + "\n");
+  const bool poly = polyhedra(s);
+  write_file(dir / "input.json",
+             (poly ? yade_polyhedra_input(s, r.dt, r.steps) : yade_input(s, r)).dump(2) + "\n");
   const std::string cmd = shell_quote(exe.string()) + " -n -x " + shell_quote(script.string()) +
                           " " + shell_quote((dir / "input.json").string()) + " " +
                           shell_quote(dir.string()) + " > " +
@@ -122,10 +144,10 @@ PeerTrace run(const scene::SceneDef& s, const Resolved& r, const fs::path& exe,
     throw PeerFailure("yade failed (exit " + std::to_string(code) + "): " + why +
                       " [log: " + (dir / "yade.log").string() + "]");
   }
-  const std::vector<int> spheres = free_spheres(s);
-  PeerTrace tr = read_trace_csv(dir / "raw.csv", static_cast<int>(spheres.size()), "yade");
+  const std::vector<int> traced = traced_bodies(s, poly);
+  PeerTrace tr = read_trace_csv(dir / "raw.csv", static_cast<int>(traced.size()), "yade", poly);
   const Json raw = Json::parse(std::ifstream(dir / "raw.json"));
-  for (int b : spheres) {
+  for (int b : traced) {
     const auto& w = raw.at("final").at(s.bodies[b].name).at("angular_velocity");
     tr.final_w.emplace_back(w[0].get<double>(), w[1].get<double>(), w[2].get<double>());
   }
@@ -136,6 +158,9 @@ PeerTrace run(const scene::SceneDef& s, const Resolved& r, const fs::path& exe,
   double worst = 0;
   for (const auto& k : raw.at("stiffness")) worst = std::max(worst, k.at("rel_diff").get<double>());
   tr.extra["stiffness_rel_diff_max"] = worst;
+  // The polyhedra path times each kind of step: free flight, in contact, the first and last
+  // contact steps (where YADE's intersection is known to be slowest).
+  if (raw.contains("step_seconds")) tr.extra["step_seconds"] = raw.at("step_seconds");
   return tr;
 }
 

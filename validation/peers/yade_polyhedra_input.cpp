@@ -2,6 +2,7 @@
 // yade_polyhedra_input.hpp).
 #include "peers/yade_polyhedra_input.hpp"
 
+#include <algorithm>
 #include <set>
 #include <sstream>
 
@@ -45,13 +46,27 @@ double convexity_defect(const Eigen::Matrix3Xd& nodes, const Eigen::Matrix3Xi& s
 Json yade_polyhedra_input(const scene::SceneDef& s, double dt, long steps) {
   const std::string where = s.file.string() + ": ";
   if (s.contact.law != scene::ContactLaw::volume_linear) {
-    throw InputError(where + "contact.law: the YADE polyhedra path runs \"volume-linear\" only");
+    throw InputError(where +
+                     "contact.law: yade: rigid polyhedra cross-check under \"volume-linear\" "
+                     "only (YADE's volumetric law, with a kv); \"" +
+                     std::string(scene::contact_law_name(s.contact.law)) +
+                     "\" has no YADE counterpart");
   }
   const std::vector<TetMesh> meshes = run::collision_meshes(s);
   Json j;
   j["scene"] = s.name;
   j["law"] = "volume-linear";
   j["kv"] = *s.contact.kv;
+  // Coulomb friction (the volume laws' tangential spring kt and μ, run/run_fdem.cpp): the pair's μ
+  // is the scene's, else the smallest of the bodies' materials'.
+  double mu = s.contact.friction.value_or(1e300);
+  if (!s.contact.friction) {
+    for (const scene::BodyDef& b : s.bodies) mu = std::min(mu, s.materials[b.material].friction);
+  }
+  if (mu > 0 && mu < 1e300) {
+    j["friction"] = mu;
+    j["kt"] = s.contact.kt.value_or(0.0);
+  }
   j["materials"] = Json::object();
   for (const Material& m : s.materials) {
     j["materials"][m.name] = {{"density", m.density}, {"young", m.young}, {"poisson", m.poisson}};

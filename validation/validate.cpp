@@ -1,0 +1,207 @@
+// `asperity validate`'s work (validate.hpp).
+#include "validate.hpp"
+
+#include <chrono>
+#include <cstdio>
+#include <map>
+
+#include "cluster/task_pool.hpp"
+#include "cluster/world.hpp"
+#include "core/error.hpp"
+#include "io/atomic_file.hpp"
+#include "junit.hpp"
+#include "peers/peer.hpp"
+#include "run/run_scene.hpp"
+#include "run/stability_sweep.hpp"
+#include "validate_report.hpp"
+
+namespace asperity::validation {
+namespace {
+namespace fs = std::filesystem;
+using OJson = nlohmann::ordered_json;
+
+// The case run by asperity (its outputs written) or by the solver (it wrote them); a solver that
+// fails fails the case, with its one-line reason on stderr.
+CaseResult solve(const CaseDef& c, const peers::CaseSolver& solver, const fs::path& dir) {
+  if (!solver.any()) {
+    CaseResult r = run_case(c);
+    if (r.sweep) {
+      run::write_stability(*r.sweep, dir);
+    } else {
+      run::write_outputs(r.run, dir);
+    }
+    return r;
+  }
+  try {
+    return check_case(c, peers::solve_case(solver, c, dir));
+  } catch (const peers::PeerFailure& e) {
+    std::fprintf(stderr, "asperity: %s\n", e.what());
+    return failed_case(c, e.what());
+  }
+}
+
+double cpu_of(const CaseResult& r) {
+  return r.run.summary.is_object() ? r.run.summary.value("cpu_seconds", 0.0) : 0.0;
+}
+
+// The case's JUnit rows: an error row when the run failed, one row a check.
+OJson junit_rows(const CaseResult& r) {
+  std::vector<JUnitCase> rows;
+  if (!r.error.empty()) {
+    rows.push_back({.classname = r.def.name,
+                    .name = "run",
+                    .seconds = cpu_of(r),
+                    .error = true,
+                    .message = r.error,
+                    .details = r.def.file.string()});
+  }
+  for (const CheckResult& c : r.checks) {
+    rows.push_back({.classname = r.def.name,
+                    .name = c.check.quantity,
+                    .seconds = cpu_of(r),
+                    .failed = !c.passed,
+                    .message = check_message(c),
+                    .details = c.check.why});
+  }
+  OJson out = OJson::array();
+  for (const JUnitCase& c : rows) {
+    out.push_back({{"classname", c.classname},
+                   {"name", c.name},
+                   {"seconds", c.seconds},
+                   {"failed", c.failed},
+                   {"error", c.error},
+                   {"message", c.message},
+                   {"details", c.details}});
+  }
+  return out;
+}
+
+// One case: solved, outputs and check.json under DIR/cases/NAME/; the check, the run's CPU and
+// the case's JUnit rows as the payload.
+cluster::TaskReport run_one(const CaseDef& def, const peers::CaseSolver& solver,
+                            const fs::path& out) try {
+  const fs::path dir = out / "cases" / def.name;
+  const CaseResult r = solve(def, solver, dir);
+  fs::create_directories(dir);
+  const OJson j = to_json(r);
+  io::write_atomically(dir / "check.json", j.dump(2) + "\n");
+  const OJson payload = {{"check", j}, {"cpu", cpu_of(r)}, {"junit", junit_rows(r)}};
+  return {.failed = !r.passed, .note = r.def.name, .payload = payload.dump()};
+} catch (const std::exception& e) {
+  // An error stops the command as it did before cases ran in a pool: raised again below, on
+  // every rank alike.
+  const bool input = dynamic_cast<const InputError*>(&e) != nullptr;
+  return {.failed = true,
+          .note = def.name,
+          .payload = OJson{{"error", e.what()}, {"input", input}}.dump()};
+}
+
+// The first case that raised an error raises it again (every rank holds every report).
+void rethrow_errors(const std::vector<cluster::TaskReport>& reports) {
+  for (const cluster::TaskReport& r : reports) {
+    const nlohmann::json p = nlohmann::json::parse(r.payload);
+    if (!p.contains("error")) continue;
+    if (p["input"].get<bool>()) throw InputError(p["error"].get<std::string>());
+    throw std::runtime_error(p["error"].get<std::string>());
+  }
+}
+
+// A finished case on stderr: pass or FAIL, its CPU, and each missed check.
+void print_progress(const OJson& p, int reported, std::size_t total, double elapsed) {
+  const OJson& j = p["check"];
+  std::fprintf(stderr, "[%d/%zu] %-48s %s  (%.2f s CPU; %.0f s elapsed)\n", reported, total,
+               j["case"].get<std::string>().c_str(), j["passed"].get<bool>() ? "pass" : "FAIL",
+               p["cpu"].get<double>(), elapsed);
+  if (j["passed"].get<bool>()) return;
+  for (const auto& c : j["checks"]) {
+    if (!c["passed"].get<bool>()) {
+      std::fprintf(stderr, "    %s: expected %s, got %s\n",
+                   c["quantity"].get<std::string>().c_str(), c["expected"].dump().c_str(),
+                   c["got"].dump().c_str());
+    }
+  }
+}
+
+// Rank 0: the report and, when asked, the JUnit XML, from every case's payload.
+void write_results(const std::vector<cluster::TaskReport>& reports, const ValidateOptions& o,
+                   const std::string& solved_by) {
+  std::vector<CaseOutcome> cases;
+  std::vector<JUnitCase> rows;
+  for (const cluster::TaskReport& r : reports) {
+    const OJson p = OJson::parse(r.payload);
+    cases.push_back({.check = p["check"], .cpu_seconds = p["cpu"].get<double>()});
+    for (const auto& c : p["junit"]) {
+      rows.push_back({.classname = c["classname"].get<std::string>(),
+                      .name = c["name"].get<std::string>(),
+                      .seconds = c["seconds"].get<double>(),
+                      .failed = c["failed"].get<bool>(),
+                      .error = c["error"].get<bool>(),
+                      .message = c["message"].get<std::string>(),
+                      .details = c["details"].get<std::string>()});
+    }
+  }
+  write_validate_report(cases, o.out, solved_by);
+  if (o.junit) write_junit(*o.junit, "asperity validate (" + solved_by + ")", rows);
+}
+
+}  // namespace
+
+std::vector<CaseDef> load_cases(const std::vector<fs::path>& paths) {
+  std::vector<CaseDef> cases;
+  for (const fs::path& p : paths) {
+    for (const fs::path& f : find_cases(p)) cases.push_back(load_case(f));
+  }
+  std::map<std::string, fs::path> seen;
+  for (const CaseDef& c : cases) {
+    const auto [it, fresh] = seen.emplace(c.name, c.file);
+    if (!fresh) {
+      throw InputError(c.file.string() + ": case: \"" + c.name + "\" is also the name of " +
+                       it->second.string() + " (each case writes into a folder of its name)");
+    }
+  }
+  return cases;
+}
+
+int validate_cases(const std::vector<CaseDef>& cases, const ValidateOptions& o) {
+  if (o.solver.any()) peers::check_solver(o.solver, cases);
+  if (o.junit) fs::remove(*o.junit);
+  const std::string solved_by = o.solver.external() ? "the command `" + o.solver.command + "`"
+                                : o.solver.any()    ? "the peer " + o.solver.peer
+                                                    : "asperity";
+  cluster::World world;
+  return world.guard([&] {
+    if (world.root()) fs::create_directories(o.out / "cases");
+    // Each case on whichever rank's worker is free (cases in their order: they cost about the
+    // same); its outputs on disk, its check back to rank 0 as the report's payload.
+    std::vector<int> order(cases.size());
+    for (std::size_t k = 0; k < cases.size(); ++k) order[k] = static_cast<int>(k);
+    const auto t0 = std::chrono::steady_clock::now();
+    int reported = 0;
+    const std::vector<cluster::TaskReport> reports = cluster::run_tasks(
+        world, static_cast<int>(cases.size()), order, o.jobs,
+        [&](int k) { return run_one(cases[static_cast<std::size_t>(k)], o.solver, o.out); },
+        [&](const cluster::TaskReport& r, int) {
+          ++reported;
+          if (o.quiet) return;
+          const OJson p = OJson::parse(r.payload);
+          if (p.contains("error")) return;
+          print_progress(
+              p, reported, cases.size(),
+              std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count());
+        });
+    rethrow_errors(reports);
+    int failed = 0;
+    for (const cluster::TaskReport& r : reports) failed += r.failed ? 1 : 0;
+    if (world.root()) {
+      write_results(reports, o, solved_by);
+      if (!o.quiet) {
+        std::fprintf(stderr, "%zu of %zu cases pass -> %s\n",
+                     cases.size() - static_cast<std::size_t>(failed), cases.size(),
+                     (o.out / "report.md").string().c_str());
+      }
+    }
+    return failed;
+  });
+}
+
+}  // namespace asperity::validation
