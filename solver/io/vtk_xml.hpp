@@ -17,16 +17,42 @@ namespace asperity::io::vtk {
 // (readable; written with 17 significant digits, so it round-trips too, at about 2.3× the size).
 enum class Encoding { base64, ascii };
 
+// The values of an array already encoded (base64 of its byte count and values, or its ASCII
+// text): what does not change between the frames of a series (cells, body ids) is encoded once
+// and copied into every document.
+struct Encoded {
+  const char* type = "Int32";  // VTK's type name: Float64, Int32, UInt8
+  Encoding encoding = Encoding::base64;
+  std::size_t count = 0;  // values
+  std::string text;
+};
+
 // One named field: `components` values per point or cell, row-major (point 0's x y z, then
 // point 1's ...).
 struct DataArray {
   std::string name;
   int components = 1;
-  std::variant<std::vector<double>, std::vector<std::int32_t>> values;
+  std::variant<std::vector<double>, std::vector<std::int32_t>, Encoded> values;
 };
+
+// The same array with its values encoded once for `encoding` (the documents it goes into must
+// use the same encoding).
+DataArray encoded(const DataArray& a, Encoding encoding);
+
+// The cells of a tetrahedral grid, encoded once: a series' frames share them.
+struct TetCells {
+  Eigen::Index count = 0;
+  Encoded connectivity, offsets, types;
+};
+TetCells tet_cells(const Eigen::Matrix4Xi& tets, Encoding encoding);
 
 // A .vtu document: every column of `tets` is one linear tetrahedron (VTK_TETRA) over `points`.
 std::string unstructured_grid(const Eigen::Matrix3Xd& points, const Eigen::Matrix4Xi& tets,
+                              const std::vector<DataArray>& point_data,
+                              const std::vector<DataArray>& cell_data, Encoding encoding);
+// The same document from cells encoded once (tet_cells with the same encoding): byte for byte
+// what the overload above writes.
+std::string unstructured_grid(const Eigen::Matrix3Xd& points, const TetCells& cells,
                               const std::vector<DataArray>& point_data,
                               const std::vector<DataArray>& cell_data, Encoding encoding);
 
@@ -57,5 +83,7 @@ class Collection {
 
 // RFC 4648 base64 of `n` bytes (exposed for the tests).
 std::string base64(const void* data, std::size_t n);
+// The same, appended to `out`.
+void append_base64(std::string& out, const void* data, std::size_t n);
 
 }  // namespace asperity::io::vtk

@@ -70,9 +70,26 @@ void FrameFiles::write_frame(double time, const std::string& file, const std::st
   io::write_atomically(out_.dir / file, xml);
   pvd_.add(time, file, 0);
   if (!static_file_.empty()) pvd_.add(time, static_file_, 1);
-  pvd_.write(out_.dir / "run.pvd");
   ++stats_.frames;
   stats_.bytes += static_cast<long long>(xml.size());
+  pvd_current_ = false;
+  // Rewriting run.pvd after every frame cost as much as the frames themselves (bench_vtk: the
+  // rename over the existing file makes ext4 write it out at once, auto_da_alloc): while the run
+  // goes on it is rewritten at most once a second, and whole at the end (flush). A run killed
+  // mid-way still leaves a collection of whole frames, at most a second behind.
+  if (stats_.frames == 1 || Clock::now() - pvd_written_ >= std::chrono::seconds(1)) {
+    write_collection();
+  }
+}
+
+void FrameFiles::flush() {
+  if (!pvd_current_) write_collection();
+}
+
+void FrameFiles::write_collection() {
+  pvd_.write(out_.dir / "run.pvd");
+  pvd_written_ = Clock::now();
+  pvd_current_ = true;
 }
 
 // ---------------------------------------------------------------------------------------------
@@ -131,6 +148,11 @@ FdemSeries::FdemSeries(fdem::World& w, const std::vector<Eigen::Matrix4Xi>& body
   moving_tets_.resize(4, static_cast<Eigen::Index>(moving.size()));
   for (std::size_t k = 0; k < moving.size(); ++k)
     moving_tets_.col(static_cast<Eigen::Index>(k)) = moving[k];
+  // What every frame repeats (the format wants the cells in each file) is encoded once here.
+  cells_ = io::vtk::tet_cells(moving_tets_, out.encoding);
+  body_ids_ = io::vtk::encoded(
+      {.name = "body_id", .values = std::vector<std::int32_t>(tet_body_.begin(), tet_body_.end())},
+      out.encoding);
 
   if (!fixed.empty()) {
     Eigen::Matrix3Xd x(3, static_cast<Eigen::Index>(fixed_nodes.size()));
@@ -147,13 +169,13 @@ FdemSeries::FdemSeries(fdem::World& w, const std::vector<Eigen::Matrix4Xi>& body
               .values = std::vector<std::int32_t>(fixed_body.begin(), fixed_body.end())}},
             out.encoding));
   }
-  const State s0 = capture(w, 0);
-  files_.write_frame(s0.time, frame_name("bodies", frame_++, "vtu"), document(w, s0));
+  capture(w, 0, frame_state_);
+  files_.write_frame(frame_state_.time, frame_name("bodies", frame_++, "vtu"),
+                     document(w, frame_state_));
   last_written_step_ = 0;
 }
 
-FdemSeries::State FdemSeries::capture(const fdem::World& w, long step) const {
-  State s;
+void FdemSeries::capture(const fdem::World& w, long step, State& s) const {
   s.time = w.time;
   s.step = step;
   const auto n = static_cast<Eigen::Index>(moving_nodes_.size());
@@ -166,7 +188,6 @@ FdemSeries::State FdemSeries::capture(const fdem::World& w, long step) const {
     s.v.col(i) = w.v.col(g);
     s.f_contact.col(i) = w.f_contact.col(g);
   }
-  return s;
 }
 
 std::string FdemSeries::document(const fdem::World& w, const State& s) const {
@@ -190,22 +211,22 @@ std::string FdemSeries::document(const fdem::World& w, const State& s) const {
     energy[k] = st.energy_density;
   }
   return io::vtk::unstructured_grid(
-      s.x, moving_tets_,
+      s.x, cells_,
       {{.name = "displacement", .components = 3, .values = flat(displacement)},
        {.name = "velocity", .components = 3, .values = flat(s.v)},
        {.name = "contact_force", .components = 3, .values = flat(s.f_contact)}},
       {{.name = "von_mises", .values = std::move(von_mises)},
        {.name = "strain_energy_density", .values = std::move(energy)},
-       {.name = "body_id",
-        .values = std::vector<std::int32_t>(tet_body_.begin(), tet_body_.end())}},
+       body_ids_},
       files_.output().encoding);
 }
 
 void FdemSeries::after_step(const fdem::World& w, long k, double force, bool last) {
   const Timed timed(files_.stats().write_seconds);
-  if (policy_.new_peak(force)) peak_ = capture(w, k);
+  if (policy_.new_peak(force)) capture(w, k, peak_);
   if (!policy_.regular(k, last) || k == last_written_step_) return;
-  files_.write_frame(w.time, frame_name("bodies", frame_++, "vtu"), document(w, capture(w, k)));
+  capture(w, k, frame_state_);
+  files_.write_frame(w.time, frame_name("bodies", frame_++, "vtu"), document(w, frame_state_));
   last_written_step_ = k;
   if (peak_.step == k) peak_.step = -2;  // already a frame
 }
@@ -214,14 +235,16 @@ void FdemSeries::finish(const fdem::World& w) {
   const Timed timed(files_.stats().write_seconds);
   // A run that stopped early (unstable) ends on the state where it stopped.
   if (w.steps != last_written_step_) {
-    files_.write_frame(w.time, frame_name("bodies", frame_++, "vtu"),
-                       document(w, capture(w, w.steps)));
+    capture(w, w.steps, frame_state_);
+    files_.write_frame(w.time, frame_name("bodies", frame_++, "vtu"), document(w, frame_state_));
     last_written_step_ = w.steps;
     if (peak_.step == w.steps) peak_.step = -2;
   }
-  if (peak_.step < 0) return;
-  files_.write_frame(peak_.time, "bodies_peak.vtu", document(w, peak_));
-  peak_.step = -2;
+  if (peak_.step >= 0) {
+    files_.write_frame(peak_.time, "bodies_peak.vtu", document(w, peak_));
+    peak_.step = -2;
+  }
+  files_.flush();
 }
 
 // ---------------------------------------------------------------------------------------------
@@ -268,6 +291,10 @@ SphereSeries::SphereSeries(const dem::SphereWorld& w, const VtkOutput& out)
         "walls.vtu",
         io::vtk::unstructured_grid(x, t, {}, {{.name = "body_id", .values = ids}}, out.encoding));
   }
+  radius_ = io::vtk::encoded({.name = "radius", .values = w.radius}, out.encoding);
+  body_ids_ = io::vtk::encoded(
+      {.name = "body_id", .values = std::vector<std::int32_t>(w.body.begin(), w.body.end())},
+      out.encoding);
   const State s0 = capture(w, 0);
   files_.write_frame(s0.time, frame_name("spheres", frame_++, "vtp"), document(w, s0));
   last_written_step_ = 0;
@@ -280,12 +307,12 @@ SphereSeries::State SphereSeries::capture(const dem::SphereWorld& w, long step) 
 std::string SphereSeries::document(const dem::SphereWorld& w, const State& s) const {
   return io::vtk::point_cloud(
       s.x,
-      {{.name = "radius", .values = w.radius},
+      {radius_,
        {.name = "displacement", .components = 3, .values = flat(s.x - w.x_initial)},
        {.name = "velocity", .components = 3, .values = flat(s.v)},
        {.name = "angular_velocity", .components = 3, .values = flat(s.w)},
        {.name = "contact_force", .components = 3, .values = flat(s.force)},
-       {.name = "body_id", .values = std::vector<std::int32_t>(w.body.begin(), w.body.end())}},
+       body_ids_},
       files_.output().encoding);
 }
 
@@ -307,9 +334,11 @@ void SphereSeries::finish(const dem::SphereWorld& w) {
     last_written_step_ = w.steps;
     if (peak_.step == w.steps) peak_.step = -2;
   }
-  if (peak_.step < 0) return;
-  files_.write_frame(peak_.time, "spheres_peak.vtp", document(w, peak_));
-  peak_.step = -2;
+  if (peak_.step >= 0) {
+    files_.write_frame(peak_.time, "spheres_peak.vtp", document(w, peak_));
+    peak_.step = -2;
+  }
+  files_.flush();
 }
 
 }  // namespace asperity::run

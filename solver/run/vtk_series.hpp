@@ -4,6 +4,7 @@
 // the world: writing frames changes no result.
 #pragma once
 
+#include <chrono>
 #include <filesystem>
 #include <string>
 #include <vector>
@@ -25,17 +26,23 @@ class FrameFiles {
   explicit FrameFiles(const VtkOutput& out);
   // A dataset that never changes (fixed blocks, walls), written once and listed at every time.
   void write_static(const std::string& file, const std::string& xml);
-  // One frame: its file, then the collection.
+  // One frame: its file, then (at most once a second, and for the first frame) the collection.
   void write_frame(double time, const std::string& file, const std::string& xml);
+  // The collection, listing every frame written: at the end of the run.
+  void flush();
   const VtkOutput& output() const { return out_; }
   const SeriesStats& stats() const { return stats_; }
   SeriesStats& stats() { return stats_; }
 
  private:
   VtkOutput out_;
+  void write_collection();
+
   io::vtk::Collection pvd_;
   std::string static_file_;
   SeriesStats stats_;
+  std::chrono::steady_clock::time_point pvd_written_;
+  bool pvd_current_ = true;  // run.pvd lists every frame written so far
 };
 
 // Which steps get a frame, and the peak: shared by the models' series.
@@ -77,13 +84,18 @@ class FdemSeries {
     long step = -1;
     Eigen::Matrix3Xd x, v, f_contact;
   };
-  State capture(const fdem::World& w, long step) const;
+  // Copies the written points' state into `s` (its buffers reused: the peak is captured at
+  // every step of a rising force).
+  void capture(const fdem::World& w, long step, State& s) const;
   std::string document(const fdem::World& w, const State& s) const;
 
   FrameFiles files_;
   FramePolicy policy_;
   std::vector<int> moving_nodes_;  // global node index of each written point
   Eigen::Matrix4Xi moving_tets_;   // in written-point indices
+  io::vtk::TetCells cells_;        // moving_tets_, encoded once for every frame
+  io::vtk::DataArray body_ids_;    // tet_body_, encoded once
+  State frame_state_;              // the state of the frame being written (buffers reused)
   std::vector<int> tet_body_;      // world body of each written tetrahedron
   std::vector<int> tet_element_;   // deformable: element index in its body's TetElements, else -1
   State peak_;
@@ -112,6 +124,7 @@ class SphereSeries {
 
   FrameFiles files_;
   FramePolicy policy_;
+  io::vtk::DataArray radius_, body_ids_;  // the same in every frame: encoded once
   State peak_;
   long last_written_step_ = -1;
   long frame_ = 0;

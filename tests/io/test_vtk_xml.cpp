@@ -6,6 +6,7 @@
 #include <filesystem>
 #include <fstream>
 #include <sstream>
+#include <stdexcept>
 
 #include "io/vtk_xml.hpp"
 
@@ -43,6 +44,28 @@ TEST(VtkXml, AsciiRoundTripsDoubles) {
       in >> v;
       EXPECT_EQ(v, x(c, i));
     }
+  }
+}
+
+// A series encodes its cells and body ids once (tet_cells, encoded) and copies them into every
+// frame: the document must be byte for byte the one written from the plain arrays, in both
+// encodings (each appended block stands alone, so only its offset depends on where it goes).
+TEST(VtkXml, EncodedOnceEqualsEncodedInPlace) {
+  Eigen::Matrix3Xd x(3, 5);
+  x << 0, 1, 0, 0, 1, 0, 0, 1, 0, 1, 0, 0, 0, 1, 1;
+  Eigen::Matrix4Xi t(4, 2);
+  t << 0, 1, 1, 2, 2, 3, 3, 4;
+  const DataArray ids{.name = "body_id", .values = std::vector<std::int32_t>{7, 9}};
+  const DataArray vm{.name = "von_mises", .values = std::vector<double>{1.5, -2.25}};
+  const DataArray u{.name = "u", .components = 3, .values = std::vector<double>(15, 0.125)};
+  for (const Encoding e : {Encoding::base64, Encoding::ascii}) {
+    const std::string plain = unstructured_grid(x, t, {u}, {vm, ids}, e);
+    const std::string once =
+        unstructured_grid(x, tet_cells(t, e), {encoded(u, e)}, {vm, encoded(ids, e)}, e);
+    EXPECT_EQ(plain, once);
+    EXPECT_THROW(unstructured_grid(x, tet_cells(t, e), {}, {},
+                                   e == Encoding::ascii ? Encoding::base64 : Encoding::ascii),
+                 std::logic_error);
   }
 }
 

@@ -295,6 +295,12 @@ def force_overlays(study, out, cases, doc):
         names.append((p, name))
     for p, name in names:
         doc.image(name, f"Force-time curves of {p} at every resolution")
+        # Its impact at peak force, when `impact_pictures.py --study` rendered it from the frames.
+        picture = os.path.join(study, "pictures", f"impact_{p}.png")
+        if os.path.exists(picture):
+            shutil.copyfile(picture, os.path.join(out, f"impact_{p}.png"))
+            doc.image(f"impact_{p}.png", f"{p} at peak force, fem and rigid: surface von Mises stress and contact "
+                      "pressure, rendered from the ParaView frames of a rerun of the study's case")
 
 
 def cpu_chart(out, cases, fits, doc):
