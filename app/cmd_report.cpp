@@ -81,7 +81,9 @@ void add_report_command(CLI::App& app, Action& action) {
       const fs::path out = args->out.empty() ? args->study : args->out;
       check_out_folder(out);
       fs::path stability = args->stability;
-      const fs::path reports = fs::path(kReportScript).parent_path().parent_path();  // reports/
+      // The script is ROOT/validation/report/study_report.py; the reports are ROOT/reports.
+      const fs::path reports =
+          fs::path(kReportScript).parent_path().parent_path().parent_path() / "reports";
       if (stability.empty() && fs::is_directory(args->study / "stability"))
         stability = args->study / "stability";
       if (stability.empty() && fs::is_directory(reports / "stability"))
