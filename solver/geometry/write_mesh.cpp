@@ -49,29 +49,6 @@ void write_binary_stl(std::ostream& os, const SurfaceMesh& m) {
 
 }  // namespace
 
-void write_atomically(const std::filesystem::path& file,
-                      const std::function<void(std::ostream&)>& fill) {
-  const std::filesystem::path tmp = file.string() + ".partial-" + std::to_string(::getpid());
-  // The temporary goes whatever happens (a failed write, an exception in `fill`, an interrupt):
-  // no *.partial-PID is left beside complete-looking files.
-  const RemoveOnInterrupt guard(tmp);
-  try {
-    {
-      std::ofstream out(tmp, std::ios::binary | std::ios::trunc);
-      if (!out) throw std::runtime_error(tmp.string() + ": cannot write");
-      out.precision(std::numeric_limits<double>::max_digits10);
-      fill(out);
-      out.flush();
-      if (!out) throw std::runtime_error(tmp.string() + ": write failed");
-    }
-    std::filesystem::rename(tmp, file);
-  } catch (...) {
-    std::error_code ec;
-    std::filesystem::remove(tmp, ec);
-    throw;
-  }
-}
-
 void write_surface_mesh(const std::filesystem::path& file, const SurfaceMesh& m) {
   std::string ext = file.extension().string();
   std::transform(ext.begin(), ext.end(), ext.begin(),

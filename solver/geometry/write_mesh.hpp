@@ -3,17 +3,14 @@
 #pragma once
 
 #include <filesystem>
-#include <functional>
-#include <iosfwd>
 
 #include "core/mesh.hpp"
+#include "io/atomic_file.hpp"
 
 namespace asperity::geometry {
 
-// Writes through `fill` into FILE.partial-PID, then renames it to FILE. Throws
-// std::runtime_error naming the file when it cannot be written.
-void write_atomically(const std::filesystem::path& file,
-                      const std::function<void(std::ostream&)>& fill);
+// Every file below goes through io::write_atomically (FILE.partial-PID, then a rename).
+using io::write_atomically;
 
 // By extension: .off, .obj, .ply (ASCII) with 17 significant digits (doubles round-trip
 // exactly), or .stl (binary, 32-bit floats as the format has). InputError for any other.

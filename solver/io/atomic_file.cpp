@@ -4,6 +4,7 @@
 #include <unistd.h>
 
 #include <fstream>
+#include <limits>
 #include <stdexcept>
 #include <system_error>
 
@@ -11,16 +12,18 @@
 
 namespace asperity::io {
 
-void write_atomically(const std::filesystem::path& file, const std::string& text) {
+void write_atomically(const std::filesystem::path& file,
+                      const std::function<void(std::ostream&)>& fill) {
   const std::filesystem::path tmp = file.string() + ".partial-" + std::to_string(::getpid());
-  // The temporary goes whatever happens: a failed write (disk full) or an interrupt must not
-  // leave a *.partial-PID beside complete-looking files.
+  // The temporary goes whatever happens: a failed write (disk full), an exception in `fill` or
+  // an interrupt must not leave a *.partial-PID beside complete-looking files.
   const RemoveOnInterrupt guard(tmp);
   try {
     {
       std::ofstream out(tmp, std::ios::binary | std::ios::trunc);
       if (!out) throw std::runtime_error(tmp.string() + ": cannot write");
-      out << text;
+      out.precision(std::numeric_limits<double>::max_digits10);
+      fill(out);
       out.flush();
       if (!out) throw std::runtime_error(tmp.string() + ": write failed");
     }
@@ -30,6 +33,10 @@ void write_atomically(const std::filesystem::path& file, const std::string& text
     std::filesystem::remove(tmp, ec);
     throw;
   }
+}
+
+void write_atomically(const std::filesystem::path& file, const std::string& text) {
+  write_atomically(file, [&](std::ostream& out) { out << text; });
 }
 
 }  // namespace asperity::io
