@@ -158,7 +158,9 @@ struct FiniteSphere::Impl {
   double beta = 0;
 
   void build(const FiniteSphereMesh& spec);
-  FiniteSphereState solve(double force) const;
+  // `active` is the starting guess (empty: from the free gaps) and returns the contact set; a
+  // neighbouring state's set makes the active set settle in one or two solves.
+  FiniteSphereState solve(double force, std::vector<char>& active) const;
 };
 
 void FiniteSphere::Impl::build(const FiniteSphereMesh& spec) {
@@ -275,12 +277,14 @@ void FiniteSphere::Impl::build(const FiniteSphereMesh& spec) {
 // primal–dual active set (Hintermüller, Ito & Kunisch 2002, SIAM J. Optim. 13: A = {k : R_k −
 // w_k/D_kk > 0}), which settles in a few solves from the free gaps; should it cycle, Murty's
 // least-index principal pivoting (one flip at a time, finite for a P-matrix; Murty 1974) ends it.
-FiniteSphereState FiniteSphere::Impl::solve(double force) const {
+FiniteSphereState FiniteSphere::Impl::solve(double force, std::vector<char>& active) const {
   const int nc = static_cast<int>(gap.size());
   const Eigen::Map<const Eigen::VectorXd> g0(gap.data(), nc);
   const Eigen::VectorXd free_gap = g0 + force * b;
-  std::vector<char> active(nc, 0);
-  for (int k = 0; k < nc; ++k) active[k] = free_gap[k] < 0.0;
+  if (active.size() != gap.size()) {
+    active.assign(nc, 0);
+    for (int k = 0; k < nc; ++k) active[k] = free_gap[k] < 0.0;
+  }
   Eigen::VectorXd R = Eigen::VectorXd::Zero(nc), w = free_gap;
   auto solve_on = [&] {
     std::vector<int> A;
@@ -366,17 +370,26 @@ FiniteSphere& FiniteSphere::operator=(FiniteSphere&& other) noexcept {
 }
 
 FiniteSphereState FiniteSphere::at_force(double force) const {
-  return impl_->solve(force);
+  std::vector<char> active;
+  return impl_->solve(force, active);
+}
+
+std::vector<FiniteSphereState> FiniteSphere::at_forces(const std::vector<double>& forces) const {
+  std::vector<char> active;
+  std::vector<FiniteSphereState> states;
+  for (double f : forces) states.push_back(impl_->solve(f, active));
+  return states;
 }
 
 FiniteSphereState FiniteSphere::at_approach(double approach) const {
   // δ(F) is close to F^{2/3}, so F ← F (δ/δ(F))^{3/2} contracts by |1 − (3/2) dlnδ/dlnF|, a few
   // per cent: 1e-13 in δ within ten solves from Hertz's force.
   double force = hertz_force(impl_->material, approach);
-  FiniteSphereState state = impl_->solve(force);
+  std::vector<char> active;
+  FiniteSphereState state = impl_->solve(force, active);
   for (int i = 0; i < 40 && std::abs(state.approach / approach - 1.0) > 1e-13; ++i) {
     force *= std::pow(approach / state.approach, 1.5);
-    state = impl_->solve(force);
+    state = impl_->solve(force, active);
   }
   return state;
 }
@@ -424,9 +437,14 @@ FiniteSphereLaw fit_finite_sphere_law(double poisson_ratio, const FiniteSphereMe
   const int n_states = static_cast<int>(std::ceil(std::log(50.0) / step)) + 1;
   Eigen::MatrixXd A(n_states, kTerms);
   Eigen::VectorXd y(n_states);
+  std::vector<double> forces;
   for (int i = 0; i < n_states; ++i) {
     const double s_target = s_max * std::exp(-std::log(50.0) * i / (n_states - 1.0));
-    const FiniteSphereState st = sphere.at_force(hertz_force(material, s_target * s_target));
+    forces.push_back(hertz_force(material, s_target * s_target));
+  }
+  const std::vector<FiniteSphereState> states = sphere.at_forces(forces);
+  for (int i = 0; i < n_states; ++i) {
+    const FiniteSphereState& st = states[i];
     const double s = std::sqrt(st.approach);
     y[i] = st.force / hertz_force(material, st.approach);
     A.row(i) << 1.0, s, s * std::log(s), s * s, s * s * s;
