@@ -9,6 +9,7 @@
 #include <cmath>
 #include <complex>
 #include <map>
+#include <memory>
 #include <mutex>
 #include <numbers>
 #include <stdexcept>
@@ -23,6 +24,13 @@ constexpr double kPi = std::numbers::pi;
 
 double effective_modulus(double E, double nu) {
   return E / (1.0 - nu * nu);
+}
+
+// The library's callers are tests and gates: a bad argument is a programming error, named.
+void require(bool ok, const char* name, double value, const char* range) {
+  if (!ok)
+    throw std::invalid_argument(std::string("finite_sphere: ") + name + " = " +
+                                std::to_string(value) + ", must be " + range);
 }
 
 // The bipolar grid. With ζ = r + i(z + R) (the contact pole P at ζ = 0, the opposite pole T at
@@ -353,10 +361,21 @@ FiniteSphereState FiniteSphere::Impl::solve(double force, std::vector<char>& act
 }
 
 FiniteSphere::FiniteSphere(const FiniteSphereMaterial& material, const FiniteSphereMesh& mesh)
-    : impl_(new Impl) {
-  impl_->material = material;
-  impl_->angular_cells = mesh.angular_cells;
-  impl_->build(mesh);
+    : impl_(nullptr) {
+  require(material.youngs_modulus > 0.0, "youngs_modulus", material.youngs_modulus, "> 0");
+  require(material.poisson_ratio > -1.0 && material.poisson_ratio < 0.5, "poisson_ratio",
+          material.poisson_ratio, "in (-1, 0.5)");
+  require(material.radius > 0.0, "radius", material.radius, "> 0");
+  require(mesh.angular_cells >= 2 && mesh.angular_cells <= 256, "angular_cells", mesh.angular_cells,
+          "in [2, 256]");
+  require(mesh.pole_fan > 0.0 && mesh.pole_fan < 1e-2, "pole_fan", mesh.pole_fan,
+          "in (0, 0.01) (it must be far inside the smallest contact)");
+  require(mesh.top_fan > 0.0 && mesh.top_fan < 0.5, "top_fan", mesh.top_fan, "in (0, 0.5)");
+  auto impl = std::make_unique<Impl>();
+  impl->material = material;
+  impl->angular_cells = mesh.angular_cells;
+  impl->build(mesh);
+  impl_ = impl.release();
 }
 FiniteSphere::~FiniteSphere() {
   delete impl_;
@@ -416,6 +435,12 @@ FiniteSphere::AveragedRatio FiniteSphere::averaged_force_ratio(double s) const {
 double FiniteSphere::volume() const {
   return impl_->volume;
 }
+const FiniteSphereMaterial& FiniteSphere::material() const {
+  return impl_->material;
+}
+int FiniteSphere::angular_cells() const {
+  return impl_->angular_cells;
+}
 int FiniteSphere::nodes() const {
   return static_cast<int>(impl_->mesh.r.size());
 }
@@ -425,33 +450,38 @@ int FiniteSphere::elements() const {
 
 FiniteSphereLaw fit_finite_sphere_law(double poisson_ratio, const FiniteSphereMesh& mesh,
                                       double s_max) {
-  const FiniteSphereMaterial material{
+  const FiniteSphereMaterial unit{
       .youngs_modulus = 1.0, .poisson_ratio = poisson_ratio, .radius = 1.0};
-  const FiniteSphere sphere(material, mesh);
+  return fit_finite_sphere_law(FiniteSphere(unit, mesh), s_max);
+}
+
+FiniteSphereLaw fit_finite_sphere_law(const FiniteSphere& sphere, double s_max) {
+  const FiniteSphereMaterial& material = sphere.material();
+  const double R = material.radius;
   // Nodal contact on a self-similar mesh: g_FE oscillates about the smooth law with the period
   // of the surface nodes in ln a, π/(2 M) (the bipolar cells), by about ±0.1 % at M = 16. States
   // eight to a period, evenly in ln s from s = 0.02 s_max to s_max (s = √(δ/R)), sample every
   // phase alike, so the least-squares fit averages the oscillation out.
   constexpr int kTerms = 5;
-  const double step = std::numbers::pi / (16.0 * mesh.angular_cells);
+  const double step = std::numbers::pi / (16.0 * sphere.angular_cells());
   const int n_states = static_cast<int>(std::ceil(std::log(50.0) / step)) + 1;
   Eigen::MatrixXd A(n_states, kTerms);
   Eigen::VectorXd y(n_states);
   std::vector<double> forces;
   for (int i = 0; i < n_states; ++i) {
     const double s_target = s_max * std::exp(-std::log(50.0) * i / (n_states - 1.0));
-    forces.push_back(hertz_force(material, s_target * s_target));
+    forces.push_back(hertz_force(material, s_target * s_target * R));
   }
   const std::vector<FiniteSphereState> states = sphere.at_forces(forces);
   for (int i = 0; i < n_states; ++i) {
     const FiniteSphereState& st = states[i];
-    const double s = std::sqrt(st.approach);
+    const double s = std::sqrt(st.approach / R);
     y[i] = st.force / hertz_force(material, st.approach);
     A.row(i) << 1.0, s, s * std::log(s), s * s, s * s * s;
   }
   const Eigen::VectorXd coef = A.colPivHouseholderQr().solve(y);
   FiniteSphereLaw law;
-  law.poisson_ratio = poisson_ratio;
+  law.poisson_ratio = material.poisson_ratio;
   law.coefficients.assign(coef.data(), coef.data() + coef.size());
   law.s_max = s_max;
   law.fit_residual = (A * coef - y).cwiseAbs().maxCoeff();
@@ -485,6 +515,12 @@ std::pair<Eigen::VectorXd, Eigen::VectorXd> gauss_legendre(int n) {
 // points: g ≡ 1 gives Hertz's 2 (2/5) B(2/5, 1/2) δ_m/v = 2.9432 δ_m/v to 1e-8 (tested).
 FiniteSphereImpact impact_from_law(const FiniteSphereLaw& law, double E, double mass, double R,
                                    double v) {
+  require(E > 0.0, "E", E, "> 0");
+  require(mass > 0.0, "mass", mass, "> 0");
+  require(R > 0.0, "R", R, "> 0");
+  require(v > 0.0, "v", v, "> 0");
+  require(law.coefficients.size() == 5, "the law's coefficients",
+          static_cast<double>(law.coefficients.size()), "5 of them");
   const double k = 4.0 / 3.0 * effective_modulus(E, law.poisson_ratio) * std::sqrt(R);
   auto force = [&](double d) { return k * std::pow(d, 1.5) * evaluate(law, std::sqrt(d / R)); };
   static const auto rule48 = gauss_legendre(48);
@@ -528,6 +564,12 @@ FiniteSphereImpact impact_from_law(const FiniteSphereLaw& law, double E, double 
 
 FiniteSphereImpact finite_sphere_impact_with_mass(double E, double nu, double mass, double R,
                                                   double v) {
+  // Checked before the law is fitted (a second of CPU for nothing otherwise).
+  require(E > 0.0, "E", E, "> 0");
+  require(nu > -1.0 && nu < 0.5, "nu", nu, "in (-1, 0.5)");
+  require(mass > 0.0, "mass", mass, "> 0");
+  require(R > 0.0, "R", R, "> 0");
+  require(v > 0.0, "v", v, "> 0");
   static std::mutex guard;
   static std::map<double, FiniteSphereLaw> laws;
   FiniteSphereLaw law;
@@ -541,6 +583,7 @@ FiniteSphereImpact finite_sphere_impact_with_mass(double E, double nu, double ma
 }
 
 FiniteSphereImpact finite_sphere_impact(double E, double nu, double rho, double R, double v) {
+  require(rho > 0.0, "rho", rho, "> 0");
   return finite_sphere_impact_with_mass(E, nu, 4.0 / 3.0 * kPi * R * R * R * rho, R, v);
 }
 

@@ -77,6 +77,8 @@ class FiniteSphere {
   AveragedRatio averaged_force_ratio(double s) const;
 
   double volume() const;  // of the meshed half-disc revolved (m³)
+  const FiniteSphereMaterial& material() const;
+  int angular_cells() const;
   int nodes() const;
   int elements() const;
 
@@ -97,6 +99,8 @@ struct FiniteSphereLaw {
 };
 FiniteSphereLaw fit_finite_sphere_law(double poisson_ratio, const FiniteSphereMesh& mesh,
                                       double s_max = 0.25);
+// The same on a model already built (any E and R: the law is dimensionless).
+FiniteSphereLaw fit_finite_sphere_law(const FiniteSphere& sphere, double s_max = 0.25);
 double evaluate(const FiniteSphereLaw& law, double s);
 
 struct FiniteSphereImpact {
