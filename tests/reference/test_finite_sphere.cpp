@@ -118,8 +118,7 @@ TEST(FiniteSphere, ContactRadiusTendsToHertz) {
 // The impact the 3D gate calls (E = 10 MPa, ν = 0.3, ρ = 1000 kg/m³, R = 0.1 m): it tends to Hertz
 // as the speed falls (a/R = 0.005: within 0.3 %, the law's own 0.36 % at that size raised to the
 // power 2/5), its deviation from Hertz is the same from the M = 8 law as from the default M = 16
-// within 0.02 % (the convergence of the impact itself), and the head-on pair at relative speed w
-// is, by symmetry, one sphere at w/2.
+// within 0.02 % (the convergence of the impact itself).
 TEST(FiniteSphere, ImpactTendsToHertzAndConverges) {
   const double E = 10e6, nu = 0.3, rho = 1000.0, R = 0.1;
   const double mass = 4.0 / 3.0 * std::numbers::pi * R * R * R * rho;
@@ -145,6 +144,18 @@ TEST(FiniteSphere, ImpactTendsToHertzAndConverges) {
     EXPECT_GT(peak, 0.0);  // stiffer than Hertz: more force, shorter contact
     EXPECT_LT(duration, 0.0);
   }
+  // The head-on pair at relative speed w is one sphere at w/2 on the plane of symmetry; its Hertz
+  // values must then be Hertz's pair (E*_pair = E/(2(1 − ν²)), R* = R/2, m* = m/2, speed w).
+  const double w = 0.4;
+  const ref::FiniteSphereImpact pair = ref::finite_sphere_head_on(E, nu, rho, R, w);
+  const double Es_pair = E / (2.0 * (1.0 - nu * nu)), R_pair = R / 2.0, m_pair = mass / 2.0;
+  const double d_pair =
+      std::pow(0.5 * m_pair * w * w / (8.0 / 15.0 * Es_pair * std::sqrt(R_pair)), 0.4);
+  EXPECT_NEAR(
+      pair.hertz_peak_force / (4.0 / 3.0 * Es_pair * std::sqrt(R_pair) * std::pow(d_pair, 1.5)),
+      1.0, 1e-12);
+  EXPECT_NEAR(pair.hertz_duration / (2.0 * 0.4 * std::beta(0.4, 0.5) * d_pair / w), 1.0, 1e-12);
+  EXPECT_NEAR(2.0 * pair.hertz_max_approach / d_pair, 1.0, 1e-12);
 }
 
 // Bad arguments are programming errors of the caller (a test or a gate): named, thrown.

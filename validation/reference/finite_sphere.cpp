@@ -342,6 +342,10 @@ FiniteSphereState FiniteSphere::Impl::solve(double force, std::vector<char>& act
   FiniteSphereState state;
   state.force = force;
   state.approach = -(force * beta + gamma.dot(R));
+  // The pole carries the rest, W − Σ R_k; the pinned frame is the plane's only while that is
+  // a compression (round-off allowed).
+  if (force - R.sum() < -1e-9 * force)
+    throw std::runtime_error("finite_sphere: the pole's reaction is tensile");
   int last = -1;
   for (int k = 0; k < nc; ++k)
     if (active[k]) last = k;
@@ -585,6 +589,11 @@ FiniteSphereImpact finite_sphere_impact_with_mass(double E, double nu, double ma
 FiniteSphereImpact finite_sphere_impact(double E, double nu, double rho, double R, double v) {
   require(rho > 0.0, "rho", rho, "> 0");
   return finite_sphere_impact_with_mass(E, nu, 4.0 / 3.0 * kPi * R * R * R * rho, R, v);
+}
+
+FiniteSphereImpact finite_sphere_head_on(double E, double nu, double rho, double R,
+                                         double relative_speed) {
+  return finite_sphere_impact(E, nu, rho, R, 0.5 * relative_speed);
 }
 
 }  // namespace asperity::reference

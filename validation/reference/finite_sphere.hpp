@@ -117,6 +117,12 @@ struct FiniteSphereImpact {
 // of symmetry is rigid and frictionless). The law is fitted once per ν on the default mesh and
 // cached (1–3 s of CPU the first time, 0.1 ms after).
 FiniteSphereImpact finite_sphere_impact(double E, double nu, double rho, double R, double v);
+// Two equal spheres head-on at relative speed w: the force between them and the contact
+// duration are those of one sphere on the plane at w/2 (and so are the Hertz values beside
+// them: Hertz's pair, R* = R/2 and m* = m/2 at w, is the same impact); max_approach is each
+// sphere's, half the pair's.
+FiniteSphereImpact finite_sphere_head_on(double E, double nu, double rho, double R,
+                                         double relative_speed);
 // The same with the mass given (e.g. that of a meshed, faceted sphere).
 FiniteSphereImpact finite_sphere_impact_with_mass(double E, double nu, double mass, double R,
                                                   double v);
