@@ -1,0 +1,101 @@
+#!/usr/bin/env python3
+"""The Hertz convergence table (issue 11, item 2) from bench_hertz's JSON output
+(`bench_hertz --benchmark_filter=... --benchmark_out=RUN.json`; several files may be given, a
+later one's level replacing an earlier one's):
+
+- per level (setup, grading, a/R, s): element size, tetrahedra, steps, run CPU, peak and duration
+  errors against Hertz, impulse/2mv; written as CSV to --csv;
+- per sequence of three levels s = 2, sqrt2, 1: the observed order, the finest level's own error
+  (Richardson) and the extrapolated limit's distance from Hertz;
+- the limits against a/R: a least-squares line dev = c0 + c1 a/R, with the standard errors of
+  c0 (the test of "converges to Hertz" as a/R -> 0) and c1 (the finite-sphere coefficient).
+
+Prints Markdown. Usage: hertz_convergence_table.py [--csv OUT.csv] RUN.json [RUN.json ...]"""
+import argparse
+import json
+import math
+import re
+
+
+def richardson(e1, e2, e3, r=math.sqrt(2)):
+    q = (e1 - e2) / (e2 - e3)
+    finest = (e2 - e3) / (q - 1)
+    order = math.log(q) / math.log(r) if q > 0 else float("nan")
+    return order, finest, e3 - finest
+
+
+def fit(xs, ys):
+    """Least-squares line y = c0 + c1 x: (c0, c1, se0, se1); se from the residuals (n > 2)."""
+    n = len(xs)
+    mx, my = sum(xs) / n, sum(ys) / n
+    sxx = sum((x - mx) ** 2 for x in xs)
+    c1 = sum((x - mx) * (y - my) for x, y in zip(xs, ys)) / sxx
+    c0 = my - c1 * mx
+    if n <= 2:
+        return c0, c1, float("nan"), float("nan")
+    s2 = sum((y - c0 - c1 * x) ** 2 for x, y in zip(xs, ys)) / (n - 2)
+    return c0, c1, math.sqrt(s2 * (1 / n + mx * mx / sxx)), math.sqrt(s2 / sxx)
+
+
+def main():
+    ap = argparse.ArgumentParser()
+    ap.add_argument("--csv")
+    ap.add_argument("runs", nargs="+")
+    args = ap.parse_args()
+    levels = {}
+    for path in args.runs:
+        for b in json.load(open(path))["benchmarks"]:
+            m = re.match(r"Hertz(Block|Pair)/(graded|uniform)/aR:([\d.]+)/s:([\d.]+)", b["name"])
+            if not m or b.get("error_occurred"):
+                continue
+            levels[(m.group(1).lower(), m.group(2), m.group(3), float(m.group(4)))] = b
+    keys = sorted(levels, key=lambda k: (k[0], k[1], k[2], -k[3]))
+    cols = ["setup", "grading", "a_over_R", "s", "h_mm", "tets", "nodes", "steps", "dt",
+            "dt_by_contact", "cpu_s", "mesh_cpu_s", "err_peak", "err_duration", "impulse_ratio",
+            "momentum"]
+    if args.csv:
+        with open(args.csv, "w") as f:
+            f.write(",".join(cols) + "\n")
+            for k in keys:
+                b = levels[k]
+                f.write(",".join([k[0], k[1], f"{b['a_over_R']:.4f}", f"{k[3]:.4f}"] +
+                                 [f"{b[c]:.6g}" for c in cols[4:]]) + "\n")
+    print("| setup | grading | a/R | s | h (mm) | tetrahedra | steps | dt (s) | run CPU (s) | "
+          "peak error | duration error | impulse/2mv |")
+    print("| --- | --- | ---: | ---: | ---: | ---: | ---: | ---: | ---: | ---: | ---: | ---: |")
+    for k in keys:
+        b = levels[k]
+        print(f"| {k[0]} | {k[1]} | {b['a_over_R']:.3f} | {k[3]:.3f} | {b['h_mm']:.2f} | "
+              f"{b['tets']:.0f} | {b['steps']:.0f} | {b['dt']:.3g} | {b['cpu_s']:.1f} | "
+              f"{100 * b['err_peak']:+.2f} % | {100 * b['err_duration']:+.2f} % | "
+              f"{b['impulse_ratio']:.4f} |")
+    print()
+    print("| setup | grading | a/R | order (peak, duration) | finest level's own error (peak, "
+          "duration) | limit's distance from Hertz (peak, duration) |")
+    print("| --- | --- | ---: | --- | --- | --- |")
+    limits = {}
+    for (setup, grading, a) in sorted({k[:3] for k in keys}):
+        seq = [levels.get((setup, grading, a, s)) for s in (2.0, 1.414, 1.0)]
+        if any(b is None for b in seq):
+            continue
+        rp = richardson(*[b["err_peak"] for b in seq])
+        rd = richardson(*[b["err_duration"] for b in seq])
+        ar = seq[2]["a_over_R"]
+        limits.setdefault((setup, grading), []).append((ar, rp[2], rd[2]))
+        print(f"| {setup} | {grading} | {ar:.3f} | {rp[0]:.2f}, {rd[0]:.2f} | "
+              f"{100 * rp[1]:+.2f} %, {100 * rd[1]:+.2f} % | "
+              f"{100 * rp[2]:+.2f} %, {100 * rd[2]:+.2f} % |")
+    print()
+    for (setup, grading), pts in sorted(limits.items()):
+        if len(pts) < 2:
+            continue
+        xs = [p[0] for p in pts]
+        for i, what in ((1, "peak"), (2, "duration")):
+            c0, c1, se0, se1 = fit(xs, [p[i] for p in pts])
+            print(f"- {setup} ({grading}), {what}: limit − Hertz = ({100 * c0:+.2f} ± "
+                  f"{100 * se0:.2f}) % + ({c1:+.3f} ± {se1:.3f}) × a/R over a/R = "
+                  f"{', '.join(f'{x:.3f}' for x in xs)}")
+
+
+if __name__ == "__main__":
+    main()
