@@ -5,7 +5,7 @@ later one's level replacing an earlier one's):
 
 - per level (setup, grading, a/R, s): element size, tetrahedra, steps, run CPU, peak and duration
   errors against Hertz, impulse/2mv; written as CSV to --csv;
-- per sequence of three levels s = 2, sqrt2, 1: the observed order, the finest level's own error
+- per sequence, its finest three levels (s falling by sqrt2): the observed order, the finest level's own error
   (Richardson) and the extrapolated limit's distance from Hertz;
 - the limits against a/R: a least-squares line dev = c0 + c1 a/R, with the standard errors of
   c0 (the test of "converges to Hertz" as a/R -> 0) and c1 (the finite-sphere coefficient).
@@ -70,19 +70,22 @@ def main():
               f"{100 * b['err_peak']:+.2f} % | {100 * b['err_duration']:+.2f} % | "
               f"{b['impulse_ratio']:.4f} |")
     print()
-    print("| setup | grading | a/R | order (peak, duration) | finest level's own error (peak, "
-          "duration) | limit's distance from Hertz (peak, duration) |")
-    print("| --- | --- | ---: | --- | --- | --- |")
+    print("| setup | grading | a/R | levels s | order (peak, duration) | finest level's own error "
+          "(peak, duration) | limit's distance from Hertz (peak, duration) |")
+    print("| --- | --- | ---: | --- | --- | --- | --- |")
     limits = {}
     for (setup, grading, a) in sorted({k[:3] for k in keys}):
-        seq = [levels.get((setup, grading, a, s)) for s in (2.0, 1.414, 1.0)]
-        if any(b is None for b in seq):
+        # The finest three consecutive levels (s falling by sqrt2 each).
+        scales = sorted((k[3] for k in keys if k[:3] == (setup, grading, a)), reverse=True)
+        if len(scales) < 3:
             continue
+        seq = [levels[(setup, grading, a, s)] for s in scales[-3:]]
         rp = richardson(*[b["err_peak"] for b in seq])
         rd = richardson(*[b["err_duration"] for b in seq])
         ar = seq[2]["a_over_R"]
         limits.setdefault((setup, grading), []).append((ar, rp[2], rd[2]))
-        print(f"| {setup} | {grading} | {ar:.3f} | {rp[0]:.2f}, {rd[0]:.2f} | "
+        print(f"| {setup} | {grading} | {ar:.3f} | {', '.join(f'{s:.3f}' for s in scales[-3:])} | "
+              f"{rp[0]:.2f}, {rd[0]:.2f} | "
               f"{100 * rp[1]:+.2f} %, {100 * rd[1]:+.2f} % | "
               f"{100 * rp[2]:+.2f} %, {100 * rd[2]:+.2f} % |")
     print()

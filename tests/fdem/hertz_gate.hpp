@@ -1,0 +1,68 @@
+// The Hertz convergence gate (issue 11, item 2) for any sequence of levels of hertz_series.hpp:
+// shared by test_hertz_convergence.cpp (label slow) and test_hertz_full.cpp (label hertz-full).
+#pragma once
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <cstdio>
+#include <initializer_list>
+#include <vector>
+
+#include "hertz_series.hpp"
+
+namespace asperity::fdem::hertz {
+
+inline const double kRatio = std::sqrt(2.0);  // refinement ratio between levels
+
+struct Sequence {
+  std::vector<Level> levels;  // coarsest first
+  Rate peak, duration;
+};
+
+// Three whole-field levels (s falling by √2) at the block approach speed `speed`, printed as
+// the table of reports/fem/hertz_convergence.md has them.
+inline Sequence sequence(Setup setup, double speed, std::initializer_list<double> scales) {
+  Sequence q;
+  for (const double s : scales) {
+    const Level l = hertz::run_level(setup, s, speed);
+    EXPECT_TRUE(l.failure.empty()) << l.failure;
+    std::printf(
+        "%s a/R %.3f  s %.3f  h %.2f mm  tets %6ld  run %.1f s CPU  peak %+.4f  duration %+.4f  "
+        "impulse/2mv %.4f  momentum/mv %.1e  (%ld steps, dt %.3g s)\n",
+        setup == Setup::block ? "block" : "pair ", l.a_over_r, s, l.h * 1e3, l.tets, l.cpu,
+        l.err_force, l.err_duration, l.impulse_ratio, l.momentum, l.steps, l.dt);
+    std::fflush(stdout);
+    q.levels.push_back(l);
+  }
+  const std::vector<Level>& l = q.levels;
+  q.peak = hertz::richardson(l[0].err_force, l[1].err_force, l[2].err_force, kRatio);
+  q.duration = hertz::richardson(l[0].err_duration, l[1].err_duration, l[2].err_duration, kRatio);
+  std::printf(
+      "  order: peak %.2f, duration %.2f; finest level's own error: peak %+.4f, duration %+.4f; "
+      "limit − Hertz: peak %+.4f, duration %+.4f\n",
+      q.peak.order, q.duration.order, q.peak.finest_error, q.duration.finest_error, q.peak.limit,
+      q.duration.limit);
+  return q;
+}
+
+// The convergence gate of test_hertz_convergence.cpp, for any sequence: errors falling at every
+// level, an observed order above 0.75 (linear tetrahedra converge at first order or better in
+// the contact compliance; below that the levels have stopped converging), the finest level
+// within 2 % of the extrapolated limit (the issue's 2 %, applied to what the solver controls),
+// and the rebound impulse 2mv within 0.5 % (vibration keeps 0.01–0.02 % on these meshes).
+inline void expect_converges(const Sequence& q, const char* what) {
+  const std::vector<Level>& l = q.levels;
+  for (std::size_t i = 1; i < l.size(); ++i) {
+    EXPECT_LT(std::abs(l[i].err_force), std::abs(l[i - 1].err_force)) << what << " level " << i;
+    EXPECT_LT(std::abs(l[i].err_duration), std::abs(l[i - 1].err_duration))
+        << what << " level " << i;
+  }
+  for (const Level& x : l) EXPECT_NEAR(x.impulse_ratio, 1.0, 0.005) << what << " s " << x.s;
+  EXPECT_GT(q.peak.order, 0.75) << what;
+  EXPECT_GT(q.duration.order, 0.75) << what;
+  EXPECT_LT(std::abs(q.peak.finest_error), 0.02) << what;
+  EXPECT_LT(std::abs(q.duration.finest_error), 0.02) << what;
+}
+
+}  // namespace asperity::fdem::hertz
