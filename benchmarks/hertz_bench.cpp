@@ -20,10 +20,11 @@ using fdem::hertz::Setup;
 
 // One impact per iteration; the time is the run's CPU (std::clock), the meshing apart
 // (mesh_cpu_s).
-void BM_HertzLevel(benchmark::State& state, Setup setup, double s, double speed, bool graded) {
+void BM_HertzLevel(benchmark::State& state, Setup setup, double s, double speed, bool graded,
+                   double zone_scale) {
   for (auto _ : state) {
     const std::clock_t c0 = std::clock();
-    const fdem::hertz::Level l = fdem::hertz::run_level(setup, s, speed, graded);
+    const fdem::hertz::Level l = fdem::hertz::run_level(setup, s, speed, graded, zone_scale);
     const double all = static_cast<double>(std::clock() - c0) / CLOCKS_PER_SEC;
     if (!l.failure.empty()) {
       state.SkipWithError(l.failure.c_str());
@@ -58,18 +59,27 @@ void register_levels() {
       const double speed = a == 0.107 ? fdem::hertz::kSpeed : fdem::hertz::speed_for(a, m);
       for (const bool graded : {true, false}) {
         if (!graded && (setup == Setup::pair || a != 0.107)) continue;
-        // s = 2√2 for the pair only: its contact costs 8× the block's per step (deformable
-        // against deformable), so its gate sequence is 2√2, 2, √2.
+        // s = 2√2 for the sequences whose s = 1 costs too much: the pair (its contact costs 8×
+        // the block's per step, deformable against deformable) and a/R = 0.05 (3× the steps).
         for (const double s : {2 * r, 2.0, r, 1.0}) {
-          if (s > 2.5 && setup == Setup::block) continue;
           char name[96];
           std::snprintf(name, sizeof name, "Hertz%s/%s/aR:%.3f/s:%.3f",
                         setup == Setup::block ? "Block" : "Pair", graded ? "graded" : "uniform", a,
                         s);
-          benchmark::RegisterBenchmark(name, BM_HertzLevel, setup, s, speed, graded)
+          benchmark::RegisterBenchmark(name, BM_HertzLevel, setup, s, speed, graded, 0.0)
               ->Iterations(1)
               ->UseManualTime()
               ->Unit(benchmark::kSecond);
+          // a/R = 0.15 also on the contact zone of a/R = 0.107 (not scaled up with a: a/h 3.8
+          // instead of 2.7 at s = 1), to see what the contact zone's resolution holds.
+          if (a == 0.15 && graded) {
+            std::snprintf(name, sizeof name, "Hertz%s/zone0.107/aR:%.3f/s:%.3f",
+                          setup == Setup::block ? "Block" : "Pair", a, s);
+            benchmark::RegisterBenchmark(name, BM_HertzLevel, setup, s, speed, graded, 1.0)
+                ->Iterations(1)
+                ->UseManualTime()
+                ->Unit(benchmark::kSecond);
+          }
         }
       }
     }

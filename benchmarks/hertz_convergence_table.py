@@ -45,7 +45,7 @@ def main():
     levels = {}
     for path in args.runs:
         for b in json.load(open(path))["benchmarks"]:
-            m = re.match(r"Hertz(Block|Pair)/(graded|uniform)/aR:([\d.]+)/s:([\d.]+)", b["name"])
+            m = re.match(r"Hertz(Block|Pair)/([\w.]+)/aR:([\d.]+)/s:([\d.]+)", b["name"])
             if not m or b.get("error_occurred"):
                 continue
             levels[(m.group(1).lower(), m.group(2), m.group(3), float(m.group(4)))] = b

@@ -65,4 +65,28 @@ inline void expect_converges(const Sequence& q, const char* what) {
   EXPECT_LT(std::abs(q.duration.finest_error), 0.02) << what;
 }
 
+// Least-squares line y = c0 + c1 x with the standard errors of both coefficients from the
+// residuals (n > 2; NaN otherwise).
+struct Line {
+  double c0 = 0, c1 = 0, se0 = 0, se1 = 0;
+};
+inline Line fit_line(const std::vector<double>& x, const std::vector<double>& y) {
+  const double n = static_cast<double>(x.size());
+  double mx = 0, my = 0;
+  for (std::size_t i = 0; i < x.size(); ++i) mx += x[i] / n, my += y[i] / n;
+  double sxx = 0, sxy = 0;
+  for (std::size_t i = 0; i < x.size(); ++i) {
+    sxx += (x[i] - mx) * (x[i] - mx);
+    sxy += (x[i] - mx) * (y[i] - my);
+  }
+  Line l{.c1 = sxy / sxx};
+  l.c0 = my - l.c1 * mx;
+  double ss = 0;
+  for (std::size_t i = 0; i < x.size(); ++i) ss += std::pow(y[i] - l.c0 - l.c1 * x[i], 2);
+  const double s2 = x.size() > 2 ? ss / (n - 2) : std::nan("");
+  l.se0 = std::sqrt(s2 * (1 / n + mx * mx / sxx));
+  l.se1 = std::sqrt(s2 / sxx);
+  return l;
+}
+
 }  // namespace asperity::fdem::hertz

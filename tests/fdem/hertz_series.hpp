@@ -90,6 +90,8 @@ struct Level {
   std::string limited_by;
   double peak = 0, duration = 0;  // N, s
   double err_force = 0, err_duration = 0;
+  double mass = 0;  // kg, one sphere's (the meshed volume's: the same at every level)
+  double speed = 0;  // m/s, the block approach speed (each sphere's in the pair)
   double impulse_ratio = 0;  // body 0's velocity change / 2v: 1 for an elastic rebound
   double momentum = 0;       // |total momentum| / (m v) at the end (pair; 0 for the block)
   double cpu = 0;            // s, std::clock of the run (not the meshing)
@@ -102,9 +104,12 @@ struct Level {
 // critical step, no energy bookkeeping (it would double a step's cost). The peak is the raw
 // peak (ringing 0.3–0.9 % of Hertz at α = 10, reports/fem/hertz_convergence.md), the duration
 // the time with a non-zero contact force on body 0.
-inline Level run_level(Setup setup, double s, double speed = kSpeed, bool graded = true) {
+// `zone_scale` > 0 replaces contact_scale(speed) for the mesh (the a/R = 0.15 sequence on the
+// a/R = 0.107 contact zone: reports/fem/hertz_convergence.md).
+inline Level run_level(Setup setup, double s, double speed = kSpeed, bool graded = true,
+                       double zone_scale = 0) {
   const Material m = scenes::rubbery();
-  const double k = contact_scale(speed);
+  const double k = zone_scale > 0 ? zone_scale : contact_scale(speed);
   const TetMesh ball = level_mesh(s, k, graded);
   const scenes::Hertz ref = sphere_on_block_hertz(ball, m, speed);
   // The initial clearance, 0.17 of the approach (0.2 mm at kSpeed), scales with it.
@@ -143,6 +148,8 @@ inline Level run_level(Setup setup, double s, double speed = kSpeed, bool graded
           .duration = duration,
           .err_force = peak / ref.force - 1,
           .err_duration = duration / ref.duration - 1,
+          .mass = w.bodies[0].mass,
+          .speed = speed,
           .impulse_ratio = (body_velocity(w, 0).z() - v_before) / (-2 * v_before),
           .momentum = setup == Setup::pair ? momentum(w).norm() / (mass * speed) : 0,
           .cpu = static_cast<double>(std::clock() - t0) / CLOCKS_PER_SEC,
