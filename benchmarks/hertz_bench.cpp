@@ -41,6 +41,7 @@ void BM_HertzLevel(benchmark::State& state, Setup setup, double s, double speed,
     state.counters["dt_by_contact"] = l.limited_by == "contact" ? 1 : 0;
     state.counters["err_peak"] = l.err_force;
     state.counters["err_duration"] = l.err_duration;
+    state.counters["err_peak_filtered"] = l.err_force_filtered;
     state.counters["impulse_ratio"] = l.impulse_ratio;
     state.counters["momentum"] = l.momentum;
     state.counters["cpu_s"] = l.cpu;

@@ -9,6 +9,7 @@
 #include <initializer_list>
 #include <vector>
 
+#include "finite_sphere.hpp"
 #include "hertz_series.hpp"
 
 namespace asperity::fdem::hertz {
@@ -28,10 +29,12 @@ inline Sequence sequence(Setup setup, double speed, std::initializer_list<double
     const Level l = hertz::run_level(setup, s, speed);
     EXPECT_TRUE(l.failure.empty()) << l.failure;
     std::printf(
-        "%s a/R %.3f  s %.3f  h %.2f mm  tets %6ld  run %.1f s CPU  peak %+.4f  duration %+.4f  "
+        "%s a/R %.3f  s %.3f  h %.2f mm  tets %6ld  run %.1f s CPU  peak %+.4f (filtered %+.4f)  "
+        "duration %+.4f  "
         "impulse/2mv %.4f  momentum/mv %.1e  (%ld steps, dt %.3g s)\n",
         setup == Setup::block ? "block" : "pair ", l.a_over_r, s, l.h * 1e3, l.tets, l.cpu,
-        l.err_force, l.err_duration, l.impulse_ratio, l.momentum, l.steps, l.dt);
+        l.err_force, l.err_force_filtered, l.err_duration, l.impulse_ratio, l.momentum, l.steps,
+        l.dt);
     std::fflush(stdout);
     q.levels.push_back(l);
   }
@@ -63,6 +66,37 @@ inline void expect_converges(const Sequence& q, const char* what) {
   EXPECT_GT(q.duration.order, 0.75) << what;
   EXPECT_LT(std::abs(q.peak.finest_error), 0.02) << what;
   EXPECT_LT(std::abs(q.duration.finest_error), 0.02) << what;
+}
+
+// The finite sphere's impact at the sequence's mass and speed (validation/reference/
+// finite_sphere.hpp: a linear-elastic sphere on a rigid frictionless plane, axisymmetric
+// quadratic finite elements, quasi-static, no wave energy), as deviations from its own Hertz
+// (the same E, ν, R, mass and speed as the 3D run's).
+struct FiniteSphere {
+  double peak = 0, duration = 0;
+};
+inline FiniteSphere finite_sphere(const Sequence& q) {
+  const Material m = scenes::rubbery();
+  const Level& l = q.levels.back();
+  const reference::FiniteSphereImpact r =
+      reference::finite_sphere_impact_with_mass(m.young, m.poisson, l.mass, kRadius, l.speed);
+  return {.peak = r.peak_force / r.hertz_peak_force - 1,
+          .duration = r.duration / r.hertz_duration - 1};
+}
+
+// The 2 %, held against the finite sphere instead of Hertz's half-space: the 3D
+// Richardson limit within 2 % of the reference in peak force and duration. What separates them
+// besides the discretization: the 3D material is neo-Hookean, the reference linear (about
+// −0.5 % on the peak at a/R = 0.107, reports/fem/finite_sphere.md), and the 3D run carries wave
+// energy the quasi-static reference does not.
+inline void expect_matches_finite_sphere(const Sequence& q, const char* what) {
+  const FiniteSphere f = finite_sphere(q);
+  std::printf(
+      "  %s: limit − Hertz %+.4f / %+.4f, finite sphere − Hertz %+.4f / %+.4f (peak / "
+      "duration)\n",
+      what, q.peak.limit, q.duration.limit, f.peak, f.duration);
+  EXPECT_NEAR(q.peak.limit, f.peak, 0.02) << what;
+  EXPECT_NEAR(q.duration.limit, f.duration, 0.02) << what;
 }
 
 // Least-squares line y = c0 + c1 x with the standard errors of both coefficients from the

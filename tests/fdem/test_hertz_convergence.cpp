@@ -11,6 +11,7 @@ namespace asperity::fdem {
 namespace {
 
 using hertz::expect_converges;
+using hertz::expect_matches_finite_sphere;
 using hertz::kRatio;
 using hertz::sequence;
 using hertz::Sequence;
@@ -29,6 +30,7 @@ using hertz::Setup;
 TEST(HertzConvergence, WholeFieldRefinementConverges) {
   const Sequence q = sequence(Setup::block, hertz::kSpeed, {2.0, kRatio, 1.0});
   expect_converges(q, "block a/R 0.107");
+  expect_matches_finite_sphere(q, "block a/R 0.107");
 }
 
 // The same at a/R = 0.15 (block speed 0.465 m/s, the contact zone's elements and facets scaled
@@ -39,6 +41,7 @@ TEST(HertzConvergence, LargerContactConverges) {
   const Sequence q =
       sequence(Setup::block, hertz::speed_for(0.15, scenes::rubbery()), {2.0, kRatio, 1.0});
   expect_converges(q, "block a/R 0.15");
+  expect_matches_finite_sphere(q, "block a/R 0.15");
 }
 
 }  // namespace
