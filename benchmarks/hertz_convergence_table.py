@@ -12,6 +12,7 @@ later one's level replacing an earlier one's):
 
 Prints Markdown. Usage: hertz_convergence_table.py [--csv OUT.csv] RUN.json [RUN.json ...]"""
 import argparse
+import csv
 import json
 import math
 import re
@@ -37,13 +38,55 @@ def fit(xs, ys):
     return c0, c1, math.sqrt(s2 * (1 / n + mx * mx / sxx)), math.sqrt(s2 / sxx)
 
 
+def finite(ref, ar):
+    """The reference's row nearest a/R (within 0.002), as 'peak, duration'."""
+    near = [k for k in ref if abs(k - ar) < 0.002]
+    if not near:
+        return "–"
+    p, d = ref[min(near, key=lambda k: abs(k - ar))]
+    return f"{100 * p:+.2f} %, {100 * d:+.2f} %"
+
+
+def pct(x):
+    return "–" if x is None or x != x else f"{100 * x:+.2f} %"
+
+
+def gate_log(path):
+    """Levels from the lines the gates print (tests/fdem/hertz_gate.hpp), e.g. a ctest -V log."""
+    out = {}
+    pat = re.compile(r"(block|pair) +a/R ([\d.]+) +s ([\d.]+) +h ([\d.]+) mm +tets +(\d+) +run "
+                     r"([\d.]+) s CPU +peak ([-+\d.]+) \(filtered ([-+\d.]+)\) +duration "
+                     r"([-+\d.]+) +impulse/2mv ([\d.]+) +momentum/mv ([-+\d.e]+) +\((\d+) steps, "
+                     r"dt ([-+\d.e]+) s\)")
+    for line in open(path):
+        m = pat.search(line)
+        if not m:
+            continue
+        g = m.groups()
+        ar = {"0.05": "0.050", "0.08": "0.080", "0.15": "0.150"}.get(f"{float(g[1]):.2f}",
+                                                                        f"{float(g[1]):.3f}")
+        key = (g[0], "graded", ar, round(float(g[2]), 3))
+        out[key] = {"a_over_R": float(g[1]), "h_mm": float(g[3]), "tets": float(g[4]),
+                    "nodes": float("nan"), "steps": float(g[11]), "dt": float(g[12]),
+                    "dt_by_contact": float("nan"), "cpu_s": float(g[5]),
+                    "mesh_cpu_s": float("nan"), "err_peak": float(g[6]),
+                    "err_peak_filtered": float(g[7]), "err_duration": float(g[8]),
+                    "impulse_ratio": float(g[9]), "momentum": float(g[10])}
+    return out
+
+
 def main():
     ap = argparse.ArgumentParser()
     ap.add_argument("--csv")
+    ap.add_argument("--reference", help="reports/fem/finite_sphere.csv: the finite sphere's "
+                    "impact by a/R, printed beside the limits")
     ap.add_argument("runs", nargs="+")
     args = ap.parse_args()
     levels = {}
     for path in args.runs:
+        if not path.endswith(".json"):
+            levels.update(gate_log(path))
+            continue
         for b in json.load(open(path))["benchmarks"]:
             m = re.match(r"Hertz(Block|Pair)/([\w.]+)/aR:([\d.]+)/s:([\d.]+)", b["name"])
             if not m or b.get("error_occurred"):
@@ -51,28 +94,35 @@ def main():
             levels[(m.group(1).lower(), m.group(2), m.group(3), float(m.group(4)))] = b
     keys = sorted(levels, key=lambda k: (k[0], k[1], k[2], -k[3]))
     cols = ["setup", "grading", "a_over_R", "s", "h_mm", "tets", "nodes", "steps", "dt",
-            "dt_by_contact", "cpu_s", "mesh_cpu_s", "err_peak", "err_duration", "impulse_ratio",
-            "momentum"]
+            "dt_by_contact", "cpu_s", "mesh_cpu_s", "err_peak", "err_peak_filtered", "err_duration",
+            "impulse_ratio", "momentum"]
     if args.csv:
         with open(args.csv, "w") as f:
             f.write(",".join(cols) + "\n")
             for k in keys:
                 b = levels[k]
                 f.write(",".join([k[0], k[1], f"{b['a_over_R']:.4f}", f"{k[3]:.4f}"] +
-                                 [f"{b[c]:.6g}" for c in cols[4:]]) + "\n")
+                                 [f"{b.get(c, float('nan')):.6g}" for c in cols[4:]]) + "\n")
     print("| setup | grading | a/R | s | h (mm) | tetrahedra | steps | dt (s) | run CPU (s) | "
-          "peak error | duration error | impulse/2mv |")
-    print("| --- | --- | ---: | ---: | ---: | ---: | ---: | ---: | ---: | ---: | ---: | ---: |")
+          "peak error | filtered peak error | duration error | impulse/2mv |")
+    print("| --- | --- | ---: | ---: | ---: | ---: | ---: | ---: | ---: | ---: | ---: | ---: | ---: |")
     for k in keys:
         b = levels[k]
         print(f"| {k[0]} | {k[1]} | {b['a_over_R']:.3f} | {k[3]:.3f} | {b['h_mm']:.2f} | "
               f"{b['tets']:.0f} | {b['steps']:.0f} | {b['dt']:.3g} | {b['cpu_s']:.1f} | "
-              f"{100 * b['err_peak']:+.2f} % | {100 * b['err_duration']:+.2f} % | "
+              f"{100 * b['err_peak']:+.2f} % | {pct(b.get('err_peak_filtered'))} | "
+              f"{100 * b['err_duration']:+.2f} % | "
               f"{b['impulse_ratio']:.4f} |")
     print()
+    ref = {}
+    if args.reference:
+        for row in csv.DictReader(open(args.reference)):
+            ref[float(row["a_over_R_hertz"])] = (float(row["peak_error"]),
+                                                 float(row["duration_error"]))
     print("| setup | grading | a/R | levels s | order (peak, duration) | finest level's own error "
-          "(peak, duration) | limit's distance from Hertz (peak, duration) |")
-    print("| --- | --- | ---: | --- | --- | --- | --- |")
+          "(peak, duration) | limit's distance from Hertz (peak, duration) | finite sphere's "
+          "(peak, duration) |")
+    print("| --- | --- | ---: | --- | --- | --- | --- | --- |")
     limits = {}
     for (setup, grading, a) in sorted({k[:3] for k in keys}):
         # The finest three consecutive levels (s falling by sqrt2 each).
@@ -87,7 +137,7 @@ def main():
         print(f"| {setup} | {grading} | {ar:.3f} | {', '.join(f'{s:.3f}' for s in scales[-3:])} | "
               f"{rp[0]:.2f}, {rd[0]:.2f} | "
               f"{100 * rp[1]:+.2f} %, {100 * rd[1]:+.2f} % | "
-              f"{100 * rp[2]:+.2f} %, {100 * rd[2]:+.2f} % |")
+              f"{100 * rp[2]:+.2f} %, {100 * rd[2]:+.2f} % | {finite(ref, ar)} |")
     print()
     for (setup, grading), pts in sorted(limits.items()):
         if len(pts) < 2:
