@@ -51,11 +51,14 @@ TEST(HertzPair, HeadOnPairConvergesAndMatchesTheBlock) {
 
 // "Converges to Hertz": Hertz is the law of two half-spaces, so the finite sphere's limit may
 // differ from it by a term that vanishes with the contact size a/R. The Richardson limits of the
-// block sequences at a/R = 0.05 (s = 2√2, 2, √2), 0.08, 0.107, 0.15 (s = 2, √2, 1; the contact
-// zone's elements and facets scaled with a, hertz_series.hpp), fitted by a line in a/R: the
-// intercept is the limit's distance from Hertz as a/R → 0, which must be within the 2 %
-// (measured INTERCEPT), and the distance must shrink with the contact at every step (the slope, the
-// finite-sphere coefficient, is printed; measured SLOPE).
+// block sequences at a/R = 0.05, 0.08, 0.107, 0.15 (s = 2, √2, 1; the contact zone's elements and
+// facets scaled with a, hertz_series.hpp), fitted by a line in a/R: the intercept is the limit's
+// distance from Hertz as a/R → 0, which must be within the 2 % (measured on bench_hertz's
+// runs of the same levels, a/R = 0.05 at s = 2√2, 2, √2: −0.8 ± 1.0 % in peak, −1.2 ± 0.7 % in
+// duration), and the distance must shrink with the contact at every step (the slope, the
+// finite-sphere coefficient, is printed; measured +0.49 ± 0.10 in peak and −0.21 ± 0.06 in
+// duration, the finite sphere's +0.55 and −0.37 fitted the same way). Not run end to end yet: a/R =
+// 0.05 at s = 1 (about 10 min of CPU) never has been.
 TEST(HertzSeries, LimitTendsToHertzAsTheContactShrinks) {
   std::vector<double> ar, peak, duration;
   for (const double a : {0.05, 0.08, 0.107, 0.15}) {
