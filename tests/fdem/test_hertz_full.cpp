@@ -26,26 +26,29 @@ using hertz::Setup;
 // mid-plane is a frictionless plane of symmetry. The pair's contact is deformable against
 // deformable (both bodies' potentials), the block's deformable against one large rigid
 // tetrahedron, so their agreement checks the contact independently. The pair's contact costs
-// about 10× the block's per step (18 000 pair evaluations per step against 3 000): PAIR_CPU.
+// about 10× the block's per step (18 000 pair evaluations per step against 3 000): 146, 259 and
+// 386 s of run CPU at s = 2, √2, 1, about 15 min for the test with its block sequence.
 TEST(HertzPair, HeadOnPairConvergesAndMatchesTheBlock) {
   const double speed = hertz::speed_for(0.15, scenes::rubbery());
   const Sequence pair = sequence(Setup::pair, speed, {2.0, kRatio, 1.0});
   const Sequence block = sequence(Setup::block, speed, {2.0, kRatio, 1.0});
-  expect_converges(pair, "pair");
+  // The pair's raw peak rings (+10.1, +8.6, +9.2 % at s = 2, √2, 1: not falling; +6.0 % at s = 1
+  // after the T/20 moving average), so its peak is gated filtered, and so is the block's where the
+  // two are compared.
+  expect_converges(pair, "pair", true);
   expect_converges(block, "block");
-  expect_matches_finite_sphere(pair, "pair a/R 0.15");
+  expect_matches_finite_sphere(pair, "pair a/R 0.15", true);
   // Momentum: internal and contact forces are equal and opposite pair by pair, so the total
-  // momentum (zero) is conserved to round-off: 1e-12 of one sphere's (measured 4e-16 to 2e-15).
+  // momentum (zero) is conserved to round-off: 1e-12 of one sphere's (measured 4e-16 to 6e-15).
   for (const Level& x : pair.levels) EXPECT_LT(x.momentum, 1e-12) << "s " << x.s;
   // Level by level the two see the same sphere mesh: their durations agree within 0.5 %
-  // (measured 0.13 and 0.06 points at s = 2 and √2; the contact layer's own compliance, about
-  // h/(4αa) of the approach, is a few tenths of a percent). Their raw peaks do not (the pair
-  // +2.1 and +1.5 points above the block at s = 2 and √2, falling): PAIR_PEAK_NOTE.
+  // (measured 0.13, 0.06, 0.04 points at s = 2, √2, 1; the contact layer's own compliance, about
+  // h/(4αa) of the approach, is a few tenths of a percent).
   for (std::size_t i = 0; i < pair.levels.size(); ++i)
     EXPECT_NEAR(pair.levels[i].err_duration, block.levels[i].err_duration, 0.005) << "level " << i;
   // The two limits are one answer (the symmetric problem), each extrapolated from its own
   // sequence: 2 % is the tolerance.
-  EXPECT_NEAR(pair.peak.limit, block.peak.limit, 0.02);
+  EXPECT_NEAR(pair.peak_filtered.limit, block.peak_filtered.limit, 0.02);
   EXPECT_NEAR(pair.duration.limit, block.duration.limit, 0.02);
 }
 
