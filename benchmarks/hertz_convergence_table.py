@@ -120,9 +120,9 @@ def main():
             ref[float(row["a_over_R_hertz"])] = (float(row["peak_error"]),
                                                  float(row["duration_error"]))
     print("| setup | grading | a/R | levels s | order (peak, duration) | finest level's own error "
-          "(peak, duration) | limit's distance from Hertz (peak, duration) | finite sphere's "
-          "(peak, duration) |")
-    print("| --- | --- | ---: | --- | --- | --- | --- | --- |")
+          "(peak, duration) | limit's distance from Hertz (peak, duration) | filtered peak: order, "
+          "limit | finite sphere's (peak, duration) |")
+    print("| --- | --- | ---: | --- | --- | --- | --- | --- | --- |")
     limits = {}
     for (setup, grading, a) in sorted({k[:3] for k in keys}):
         # The finest three consecutive levels (s falling by sqrt2 each).
@@ -133,11 +133,14 @@ def main():
         rp = richardson(*[b["err_peak"] for b in seq])
         rd = richardson(*[b["err_duration"] for b in seq])
         ar = seq[2]["a_over_R"]
+        filt = [b.get("err_peak_filtered", float("nan")) for b in seq]
+        rf = richardson(*filt) if all(f == f for f in filt) else None
+        filtered = f"{rf[0]:.2f}, {100 * rf[2]:+.2f} %" if rf else "–"
         limits.setdefault((setup, grading), []).append((ar, rp[2], rd[2]))
         print(f"| {setup} | {grading} | {ar:.3f} | {', '.join(f'{s:.3f}' for s in scales[-3:])} | "
               f"{rp[0]:.2f}, {rd[0]:.2f} | "
               f"{100 * rp[1]:+.2f} %, {100 * rd[1]:+.2f} % | "
-              f"{100 * rp[2]:+.2f} %, {100 * rd[2]:+.2f} % | {finite(ref, ar)} |")
+              f"{100 * rp[2]:+.2f} %, {100 * rd[2]:+.2f} % | {filtered} | {finite(ref, ar)} |")
     print()
     for (setup, grading), pts in sorted(limits.items()):
         if len(pts) < 2:
