@@ -25,9 +25,11 @@ namespace {
 using text::shown;
 
 // Counts above this are refused as absurd; with at most kMaxProperties properties of at most 8
-// bytes per element, every count × size product stays below 2^63.
+// bytes per element, every count × size product stays below 2^63. At most kMaxElements elements
+// (a mesh has two or three), so checking a name against those before it stays cheap.
 constexpr std::int64_t kMaxCount = std::int64_t{1} << 40;
 constexpr std::size_t kMaxProperties = 1000;
+constexpr std::size_t kMaxElements = 100;
 
 enum class Scalar { kInt8, kUint8, kInt16, kUint16, kInt32, kUint32, kFloat32, kFloat64 };
 
@@ -147,6 +149,9 @@ class PlyReader {
         }
         for (const Element& e : elements_)
           if (e.name == a) fail_header(n, "element " + shown(a) + " declared twice");
+        if (elements_.size() == kMaxElements) {
+          fail_header(n, "more than " + std::to_string(kMaxElements) + " elements");
+        }
         elements_.push_back({std::string(a), *count, {}});
       } else if (kw == "property") {
         if (elements_.empty()) fail_header(n, "a property before any element");

@@ -254,6 +254,13 @@ TEST(ReadPly, MalformedHeadersAreOneLineEach) {
                        "property list float int vertex_indices\n"),
              "PLY header line 8: list count type \"float\" is not an integer type");
   EXPECT_HAS(ply_error("ply\nformat ascii 1.0\n" + v + v), "element \"vertex\" declared twice");
+  std::string many = "ply\nformat ascii 1.0\n";
+  for (int i = 0; i < 101; ++i) many += "element e" + std::to_string(i) + " 0\n";
+  EXPECT_HAS(ply_error(many), "PLY header line 103: more than 100 elements");
+  std::string wide = "ply\nformat ascii 1.0\nelement vertex 0\n";
+  for (int i = 0; i < 1001; ++i) wide += "property float p" + std::to_string(i) + "\n";
+  EXPECT_HAS(ply_error(wide),
+             "PLY header line 1004: element \"vertex\" has more than 1000 properties");
   EXPECT_HAS(ply_error("ply\nformat ascii 1.0\nelenmet vertex 3\n"),
              "PLY header line 3: unknown keyword \"elenmet\"");
   EXPECT_HAS(ply_error("ply\nformat ascii 1.0\nelement vertex 3\nproperty float x\n" + f +
