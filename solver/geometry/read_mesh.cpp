@@ -5,15 +5,12 @@
 
 #include <algorithm>
 #include <array>
-#include <cctype>
 #include <cmath>
 #include <cstdint>
 #include <cstring>
 #include <fstream>
 #include <iostream>
-#include <map>
 #include <mutex>
-#include <optional>
 #include <sstream>
 #include <string>
 #include <vector>
@@ -106,8 +103,9 @@ std::size_t count_nonfinite_tokens(const fs::path& file) {
   return n;
 }
 
-// CGAL's readers print their own diagnostics to std::cerr (e.g. the PLY reader's "incorrect file
-// format"); the contract allows one line on stderr, ours, so they are held while reading.
+// CGAL's readers may print their own diagnostics to std::cerr (its PLY reader, used before
+// read_ply.cpp, printed "incorrect file format"); the contract allows one line on stderr, ours,
+// so they are held while reading.
 // std::cerr is one object for the whole process: two threads swapping its buffer at once would
 // restore each other's (then destroyed) sink, so the swap is held under one lock.
 class QuietCerr {
