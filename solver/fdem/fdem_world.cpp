@@ -234,13 +234,9 @@ Vec3 velocity_at(const World& w, int body, const Vec3& x) {
 // Volume laws' Coulomb friction on body a of the overlap `o` (N), its spring carried in o: the
 // tangential spring k_t with the cap μ |F_n| (contact/tangential_spring.hpp) on the slip of a
 // against b at the overlap's centroid; its stored energy joins the contact energy and its sliding
-// work the dissipated energy. Zero without friction. k_t: volume-linear's `contact.kt`; for
-// volume-hertz, Mindlin's ratio to the normal stiffness through the overlap's mean depth
-// h = V/|S|: k_t = 3 (G*/E*) |F_n| / h. For a sphere h = δ/2, so this is 8 G* √(R*δ), Mindlin's
-// no-slip stiffness (Hertz–Mindlin exactly, contact/hertz_mindlin.hpp); for an edge (h = δ/2,
-// F ∝ δ^{3/2}) it is 4G*/E* times the tangent normal stiffness, Mindlin's ratio; for a face
-// (h = δ, F ∝ δ^{1/4}) three times that ratio, and like the normal one unbounded at first touch,
-// so a face that lands slides at once (docs/physics.md, "Friction").
+// work the dissipated energy. Zero without friction. k_t: volume-linear's `contact.kt`;
+// volume-hertz's Mindlin stiffness from the overlap (contact::volume_hertz_tangent_stiffness),
+// unbounded at a face's first touch like its normal one, so a face that lands slides at once.
 Vec3 volume_friction(World& w, BodyOverlap& o, const Vec3& point, const Vec3& normal_force_a,
                      double area, double volume, double dt) {
   const double fn = normal_force_a.norm();
@@ -251,7 +247,8 @@ Vec3 volume_friction(World& w, BodyOverlap& o, const Vec3& point, const Vec3& no
   double kt = w.kt;
   if (w.law == ContactLaw::volume_hertz) {
     const Material &ma = w.bodies[o.a].material, &mb = w.bodies[o.b].material;
-    kt = 3.0 * effective_shear(ma, mb) / effective_young(ma, mb) * fn * area / volume;
+    kt = contact::volume_hertz_tangent_stiffness(fn, area, volume, effective_shear(ma, mb),
+                                                 effective_young(ma, mb));
   }
   const Vec3 n = normal_force_a / fn;
   const Vec3 vr = velocity_at(w, o.a, point) - velocity_at(w, o.b, point);
