@@ -84,11 +84,17 @@ std::vector<TetPair> candidate_pairs(const Eigen::Matrix3Xd& x, const Eigen::Mat
     body_lo.col(body) = body_lo.col(body).cwiseMin(b.lo.col(k));
     body_hi.col(body) = body_hi.col(body).cwiseMax(b.hi.col(k));
   }
-  // Body pairs whose boxes meet (few bodies: all pairs; a pile would sweep these too). For each,
-  // only the tetrahedra inside the other body's box, swept along the longest side of the boxes'
+  // Body pairs whose boxes meet, by a sweep along x over the bodies' boxes. For each, only the
+  // tetrahedra inside the other body's box, swept along the longest side of the boxes'
   // intersection: a rock on a block meets it in a thin slab, so the sweep runs across the slab.
-  for (int p = 0; p < n_bodies; ++p) {
-    for (int q = p + 1; q < n_bodies; ++q) {
+  std::vector<int> bodies(static_cast<std::size_t>(n_bodies));
+  std::iota(bodies.begin(), bodies.end(), 0);
+  std::sort(bodies.begin(), bodies.end(),
+            [&](int i, int j) { return body_lo(0, i) < body_lo(0, j); });
+  for (std::size_t s = 0; s < bodies.size(); ++s) {
+    for (std::size_t t = s + 1; t < bodies.size(); ++t) {
+      const int p = bodies[s], q = bodies[t];
+      if (body_lo(0, q) > body_hi(0, p)) break;
       if (own[p].empty() || own[q].empty() || (body_fixed[p] && body_fixed[q])) continue;
       const Vec3 lo = body_lo.col(p).cwiseMax(body_lo.col(q));
       const Vec3 hi = body_hi.col(p).cwiseMin(body_hi.col(q));
