@@ -44,6 +44,18 @@ inline VolumeEnergy volume_hertz(double volume, double coefficient) {
   return {.energy = coefficient * volume * q, .slope = 1.25 * coefficient * q};
 }
 
+// Tangential (no-slip) stiffness of volume-hertz's friction, N/m: k_t = 3 (G*/E*) |F_n| / h with
+// h = V/|S| the overlap's mean depth (|F_n| in N, |S| in m², V in m³, G* and E* in Pa;
+// core/material.hpp). A sphere pressed δ has h = δ/2 and |F_n| = (4/3) E* √R* δ^{3/2}, so
+// k_t = 8 G* √(R*δ): Mindlin's (contact/hertz_mindlin.hpp), to the law's O(δ/R). An edge (h = δ/2,
+// F ∝ δ^{3/2}) gets 4G*/E* times its tangent normal stiffness, Mindlin's ratio; a face (h = δ,
+// F ∝ δ^{1/4}) three times that (docs/physics.md, "Friction").
+inline double volume_hertz_tangent_stiffness(double normal_force, double area, double volume,
+                                             double g_star, double e_star) {
+  if (!(volume > 0)) return 0;
+  return 3.0 * g_star / e_star * normal_force * area / volume;
+}
+
 // R* of a pair from the two bodies' equivalent radii (m; a fixed body or plane passes infinity).
 inline double volume_hertz_radius(double r_a, double r_b) {
   if (std::isinf(r_a)) return r_b;

@@ -234,19 +234,27 @@ Vec3 velocity_at(const World& w, int body, const Vec3& x) {
 // Volume laws' Coulomb friction on body a of the overlap `o` (N), its spring carried in o: the
 // tangential spring k_t with the cap μ |F_n| (contact/tangential_spring.hpp) on the slip of a
 // against b at the overlap's centroid; its stored energy joins the contact energy and its sliding
-// work the dissipated energy. Zero without friction.
+// work the dissipated energy. Zero without friction. k_t: volume-linear's `contact.kt`;
+// volume-hertz's Mindlin stiffness from the overlap (contact::volume_hertz_tangent_stiffness),
+// unbounded at a face's first touch like its normal one, so a face that lands slides at once.
 Vec3 volume_friction(World& w, BodyOverlap& o, const Vec3& point, const Vec3& normal_force_a,
-                     double dt) {
+                     double area, double volume, double dt) {
   const double fn = normal_force_a.norm();
   if (!(w.friction > 0) || !(fn > 0)) {
     o.spring.setZero();
     return Vec3::Zero();
   }
+  double kt = w.kt;
+  if (w.law == ContactLaw::volume_hertz) {
+    const Material &ma = w.bodies[o.a].material, &mb = w.bodies[o.b].material;
+    kt = contact::volume_hertz_tangent_stiffness(fn, area, volume, effective_shear(ma, mb),
+                                                 effective_young(ma, mb));
+  }
   const Vec3 n = normal_force_a / fn;
   const Vec3 vr = velocity_at(w, o.a, point) - velocity_at(w, o.b, point);
   const contact::TangentialForce ft = contact::tangential_spring(
       contact::rotate_into_tangent_plane(o.spring, n), vr - vr.dot(n) * n, dt, fn,
-      {.stiffness = w.kt, .damping = 0, .friction = w.friction});
+      {.stiffness = kt, .damping = 0, .friction = w.friction});
   o.spring = ft.spring;
   w.contact_energy += ft.energy;
   w.dissipated += ft.dissipated;
@@ -260,7 +268,8 @@ Vec3 volume_friction(World& w, BodyOverlap& o, const Vec3& point, const Vec3& no
 // (contact/overlap_volume.hpp). With friction, a tangential spring k_t and a Coulomb cap μ |F_n|
 // at the overlap's centroid (contact/tangential_spring.hpp), on the relative velocity of the two
 // bodies there: the friction of YADE's Law2_PolyhedraGeom_PolyhedraPhys_Volumetric (its ks,
-// its shear increment from the relative velocity at the contact point, its cap).
+// its shear increment from the relative velocity at the contact point, its cap); volume-hertz
+// takes Mindlin's k_t (volume_friction).
 void volume_contact_forces(World& w, double dt) {
   w.contact_energy = 0;
   w.contacts.reset(static_cast<int>(w.bodies.size()));
@@ -304,7 +313,7 @@ void volume_contact_forces(World& w, double dt) {
     o.slope = slope;
     const Vec3 force_a = -slope * o.side_a.area;
     const Vec3 force_b = -slope * o.side_b.area;
-    const Vec3 friction_a = volume_friction(w, o, ov.centroid, force_a, dt);
+    const Vec3 friction_a = volume_friction(w, o, ov.centroid, force_a, area, ov.volume, dt);
     for (const auto& [body, side, force, tangential] :
          {std::tuple{o.a, &o.side_a, force_a, friction_a},
           std::tuple{o.b, &o.side_b, force_b, Vec3(-friction_a)}}) {

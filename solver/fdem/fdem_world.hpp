@@ -44,7 +44,8 @@ enum class ContactLaw : std::uint8_t { potential, volume_hertz, volume_linear };
 struct ContactDef {
   ContactLaw law = ContactLaw::potential;
   double kv = 0;  // volume_linear: N/m³
-  double kt = 0;  // volume laws: the tangential spring of Coulomb friction, N/m
+  double kt =
+      0;  // volume-linear: the tangential spring of Coulomb friction, N/m (volume-hertz: Mindlin's)
   // p = alpha · E (E the largest Young's modulus among the bodies that are not fixed) unless
   // `penalty` > 0.
   // α = 10: the penetration of a layer of elements pressed together is E/p = 1/10 of their own
@@ -148,7 +149,7 @@ struct World {
   double friction = 0;
   ContactLaw law = ContactLaw::potential;
   double kv = 0;  // N/m³
-  double kt = 0;  // volume laws' friction: N/m
+  double kt = 0;  // volume-linear's friction: N/m
   // Volume laws: the surface triangles (columns of face_outward) inside each contact tetrahedron,
   // CSR: tet k owns tet_faces[tet_faces_begin[k] .. tet_faces_begin[k+1]); and the overlaps of the
   // body pairs in contact (kept across steps for volume-linear's work).

@@ -23,13 +23,15 @@ struct ReadOptions {
   double scale = 1.0;  // multiplies every coordinate: 1e-3 for a mesh in millimetres
 };
 
-// Reads FILE by its extension (.stl, .obj, .ply, .off, any case). Throws InputError
+// Reads FILE by its extension (.stl, .obj, .ply, .off, any case): OFF and PLY with our own
+// bounded readers (read_off.hpp, read_ply.hpp: every count checked against the bytes that follow
+// before anything is allocated for it), STL and OBJ with CGAL's. Throws InputError
 // "FILE: problem" for: a missing or empty file, an unknown extension, a truncated binary STL
 // (declared against actual triangle count), content that does not parse as the format (with a
-// hint when it looks like another format), NaN or infinite coordinates (with their count), a
-// polygon index out of range, a file with no faces, and a scale that is not positive and finite;
-// and before any reader runs: anything but a regular file, a file over kMaxMeshBytes, and OFF or
-// PLY header counts the file's size cannot hold (so nothing is allocated for them).
+// hint when it looks like another format; OFF and PLY name the line, element or byte), NaN or
+// infinite coordinates (with their count), a polygon index out of range, a file with no faces,
+// and a scale that is not positive and finite; and before any reader runs: anything but a regular
+// file and a file over kMaxMeshBytes.
 PolygonSoup read_mesh_file(const std::filesystem::path& file, const ReadOptions& options = {});
 
 }  // namespace asperity::geometry

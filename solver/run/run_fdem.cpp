@@ -167,18 +167,12 @@ Built build(const scene::SceneDef& s) {
   // Coulomb μ: the scene's, else the smallest of the bodies' materials (as pair_friction does
   // for a pair).
   out.def.contact.friction = s.contact.friction.value_or(friction);
-  // The volume laws' friction is a tangential spring of stiffness kt (N/m) with a Coulomb cap, as
-  // in YADE's volumetric law; kt has no default (a volume contact's normal stiffness varies with
-  // the overlap, so no one ratio to it is the right one), so friction without it is refused.
-  if (volume_law && out.def.contact.friction > 0) {
-    if (s.contact.law == scene::ContactLaw::volume_hertz) {
-      // Implemented in the world, but a cube sliding on its face under volume-hertz decelerated
-      // 9 % below μ g (volume-linear: within 2e-4): refused until that is understood.
-      throw InputError(where + (s.contact.friction ? "contact.friction" : "materials") +
-                       ": volume-hertz is frictionless in this build (friction " +
-                       fmt(out.def.contact.friction) +
-                       "); use volume-linear with kt, or set contact.friction to 0");
-    }
+  // The volume laws' friction is a tangential spring with a Coulomb cap. volume-hertz takes
+  // Mindlin's k_t = 8 G* a from the overlap's cross-section (fdem_world.cpp, volume_friction);
+  // volume-linear's kt, as in YADE's volumetric law, has no default (its normal stiffness k_v |S|
+  // varies with the overlap, so no one ratio to it is the right one): friction without it is
+  // refused.
+  if (s.contact.law == scene::ContactLaw::volume_linear && out.def.contact.friction > 0) {
     if (!s.contact.kt) {
       throw InputError(where + "contact.kt: the volume laws' friction (" +
                        (s.contact.friction ? "contact.friction " : "the materials' friction ") +

@@ -110,9 +110,13 @@ ContactDef parse_contact(const JsonReader& c) {
   if (c.has("kv") && !out.kv) c.fail("kv", "only the volume-linear law takes kv");
   if (c.has("kn") && !out.kn) c.fail("kn", "only the linear law takes kn");
   if (c.has("kt")) {
-    if (out.law != ContactLaw::linear && out.law != ContactLaw::volume_linear &&
-        out.law != ContactLaw::volume_hertz)
-      c.fail("kt", "only the linear and volume laws take kt");
+    if (out.law == ContactLaw::volume_hertz) {
+      c.fail("kt",
+             "volume-hertz takes Mindlin's tangential stiffness 8 G* a from the overlap; "
+             "only the linear and volume-linear laws take kt");
+    }
+    if (out.law != ContactLaw::linear && out.law != ContactLaw::volume_linear)
+      c.fail("kt", "only the linear and volume-linear laws take kt");
     out.kt = c.positive("kt");
   }
   if (c.has("penalty")) {

@@ -28,14 +28,15 @@ inline constexpr double kGeometryEdge = 0.0025;  // m, near the strike point
 inline constexpr double kGeometryPatch = 0.03;   // m, radius of that fine patch
 inline constexpr double kGrowth = 0.3;           // element size growth away from the contact
 
-// Sphere of radius R centred at the origin whose strike point is (0, 0, −R).
-inline SurfaceMesh sphere_surface(double r = kRadius) {
+// Sphere of radius R centred at the origin whose strike point is (0, 0, −R), with facets of
+// `edge` within `patch` of it (the a/R series scales both with the contact radius, so the
+// sagitta stays 0.7 % of the approach and the patch holds the same ~60 facets).
+inline SurfaceMesh sphere_surface(double r = kRadius, double edge = kGeometryEdge,
+                                  double patch = kGeometryPatch) {
   SurfaceMesh s = geometry::geodesic_sphere(8);
   s.vertices *= r;
-  const geometry::ElementSize fine{.size = kGeometryEdge,
-                                   .focus = Vec3(0, 0, -r),
-                                   .focus_radius = kGeometryPatch,
-                                   .growth = 1.0};
+  const geometry::ElementSize fine{
+      .size = edge, .focus = Vec3(0, 0, -r), .focus_radius = patch, .growth = 1.0};
   for (Eigen::Index before = -1; before != s.faces.cols();) {
     before = s.faces.cols();
     s = geometry::subdivide_surface(s, fine);
@@ -51,9 +52,14 @@ inline SurfaceMesh sphere_surface(double r = kRadius) {
 // s·far), so every element shrinks by s: the interior far from the contact carries a quarter of
 // the sphere's compliance (a point load's displacement falls as 1/r) and must refine too.
 inline geometry::ElementSize element_size(double h, bool graded, double r = kRadius,
-                                          double growth = kGrowth, double far = 0.025) {
+                                          double growth = kGrowth, double far = 0.025,
+                                          double focus_radius = 0.02) {
   if (!graded) return {.size = h};
-  return {.size = h, .focus = Vec3(0, 0, -r), .focus_radius = 0.02, .growth = growth, .far = far};
+  return {.size = h,
+          .focus = Vec3(0, 0, -r),
+          .focus_radius = focus_radius,
+          .growth = growth,
+          .far = far};
 }
 
 inline TetMesh sphere_mesh(double h, bool graded, double radius_edge_ratio = 1.5,
@@ -86,13 +92,13 @@ inline scenes::Hertz hertz_impact(double m_star, double r_star, double e_star, d
           .duration = 2.9432 * d / v};
 }
 
-// The meshed sphere `ball` (strike point at (0, 0, −R)) just above a fixed block, moving down.
+// The meshed sphere `ball` (strike point at (0, 0, −R)) `gap` above a fixed block, moving down.
 inline WorldDef sphere_on_block(const TetMesh& ball, const Material& m, double alpha = 10,
-                                double speed = kSpeed) {
+                                double speed = kSpeed, double gap = 2e-4) {
   WorldDef def;
   def.bodies.push_back({.name = "ball",
                         .kind = BodyKind::deformable,
-                        .mesh = scenes::translated(ball, Vec3(0, 0, kRadius + 2e-4)),
+                        .mesh = scenes::translated(ball, Vec3(0, 0, kRadius + gap)),
                         .material = m,
                         .velocity = Vec3(0, 0, -speed)});
   def.bodies.push_back({.name = "block",

@@ -1,4 +1,4 @@
-// Broad phase: the sort-and-sweep list equals the brute-force list.
+// Broad phase: the sort-and-sweep list equals the brute-force list, for three bodies and twelve.
 #include <gtest/gtest.h>
 
 #include <random>
@@ -8,6 +8,33 @@
 
 namespace asperity::fdem {
 namespace {
+
+// Every pair of different bodies, not both fixed, whose grown boxes meet, by testing all pairs.
+std::vector<std::pair<int, int>> brute_force(const Eigen::Matrix3Xd& x,
+                                             const Eigen::Matrix4Xi& tets,
+                                             const std::vector<int>& body,
+                                             const std::vector<std::uint8_t>& fixed,
+                                             double margin) {
+  std::vector<std::pair<int, int>> brute;
+  auto box = [&](int k, Vec3& lo, Vec3& hi) {
+    lo = hi = x.col(tets(0, k));
+    for (int i = 1; i < 4; ++i)
+      lo = lo.cwiseMin(x.col(tets(i, k))), hi = hi.cwiseMax(x.col(tets(i, k)));
+    lo.array() -= 0.5 * margin;
+    hi.array() += 0.5 * margin;
+  };
+  for (int i = 0; i < tets.cols(); ++i) {
+    for (int j = i + 1; j < tets.cols(); ++j) {
+      if (body[i] == body[j] || (fixed[body[i]] && fixed[body[j]])) continue;
+      Vec3 li, hi, lj, hj;
+      box(i, li, hi);
+      box(j, lj, hj);
+      if ((li.array() <= hj.array()).all() && (lj.array() <= hi.array()).all())
+        brute.emplace_back(i, j);
+    }
+  }
+  return brute;
+}
 
 TEST(BroadPhase, MatchesBruteForce) {
   // Two balls touching plus a fixed block under them, randomly perturbed.
@@ -28,25 +55,51 @@ TEST(BroadPhase, MatchesBruteForce) {
   const std::vector<std::uint8_t> fixed{0, 0, 1};
   const double margin = 0.05;
   const auto pairs = candidate_pairs(x, tets, body, fixed, margin);
-  std::vector<std::pair<int, int>> brute;
-  auto box = [&](int k, Vec3& lo, Vec3& hi) {
-    lo = hi = x.col(tets(0, k));
-    for (int i = 1; i < 4; ++i)
-      lo = lo.cwiseMin(x.col(tets(i, k))), hi = hi.cwiseMax(x.col(tets(i, k)));
-    lo.array() -= 0.5 * margin;
-    hi.array() += 0.5 * margin;
-  };
-  for (int i = 0; i < tets.cols(); ++i) {
-    for (int j = i + 1; j < tets.cols(); ++j) {
-      if (body[i] == body[j] || (fixed[body[i]] && fixed[body[j]])) continue;
-      Vec3 li, hi, lj, hj;
-      box(i, li, hi);
-      box(j, lj, hj);
-      if ((li.array() <= hj.array()).all() && (lj.array() <= hi.array()).all())
-        brute.emplace_back(i, j);
-    }
-  }
+  const auto brute = brute_force(x, tets, body, fixed, margin);
   ASSERT_GT(brute.size(), 10u);
+  ASSERT_EQ(pairs.size(), brute.size());
+  for (std::size_t k = 0; k < brute.size(); ++k) {
+    EXPECT_EQ(pairs[k].a, brute[k].first);
+    EXPECT_EQ(pairs[k].b, brute[k].second);
+  }
+}
+
+// Twelve bodies: ten balls scattered so that some touch (in every direction, so the bodies'
+// sweep along x meets pairs that overlap in x but not in y or z) and two fixed blocks that touch
+// each other (their pairs are never candidates).
+TEST(BroadPhase, ManyBodiesMatchBruteForce) {
+  std::mt19937 rng(11);
+  std::uniform_real_distribution<double> pos(-2.5, 2.5), jitter(-0.02, 0.02);
+  std::vector<TetMesh> meshes;
+  std::vector<std::uint8_t> fixed;
+  for (int k = 0; k < 10; ++k) {
+    TetMesh m = ball_mesh(0.6, 2);
+    m.nodes.colwise() += Vec3(pos(rng), pos(rng), 0.3 * pos(rng));
+    meshes.push_back(m);
+    fixed.push_back(0);
+  }
+  meshes.push_back(box_mesh(Vec3(-3, -3, -2), Vec3(0, 3, -0.9), 2, 2, 1));
+  meshes.push_back(box_mesh(Vec3(0, -3, -2), Vec3(3, 3, -0.9), 2, 2, 1));
+  fixed.push_back(1);
+  fixed.push_back(1);
+  Eigen::Index nn = 0, nt = 0;
+  for (const TetMesh& m : meshes) nn += m.nodes.cols(), nt += m.tets.cols();
+  Eigen::Matrix3Xd x(3, nn);
+  Eigen::Matrix4Xi tets(4, nt);
+  std::vector<int> body;
+  Eigen::Index node = 0, tet = 0;
+  for (std::size_t b = 0; b < meshes.size(); ++b) {
+    const TetMesh& m = meshes[b];
+    x.middleCols(node, m.nodes.cols()) = m.nodes;
+    tets.middleCols(tet, m.tets.cols()) = (m.tets.array() + static_cast<int>(node)).matrix();
+    for (Eigen::Index k = 0; k < m.tets.cols(); ++k) body.push_back(static_cast<int>(b));
+    node += m.nodes.cols(), tet += m.tets.cols();
+  }
+  for (Eigen::Index i = 0; i < x.size(); ++i) x.data()[i] += jitter(rng);
+  const double margin = 0.05;
+  const auto pairs = candidate_pairs(x, tets, body, fixed, margin);
+  const auto brute = brute_force(x, tets, body, fixed, margin);
+  ASSERT_GT(brute.size(), 100u);
   ASSERT_EQ(pairs.size(), brute.size());
   for (std::size_t k = 0; k < brute.size(); ++k) {
     EXPECT_EQ(pairs[k].a, brute[k].first);

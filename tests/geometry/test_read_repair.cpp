@@ -135,7 +135,8 @@ TEST(ReadMesh, WrongExtension) {
   test::write_text(dir / "cube.ply", test::off_text(test::unit_cube()));
   EXPECT_HAS(
       load_error(dir / "cube.ply"),
-      "not a valid PLY file: the PLY reader failed (the content looks like OFF; wrong extension?)");
+      "not a valid PLY file: it does not start with the line \"ply\" (the content looks like OFF; "
+      "wrong extension?)");
 }
 
 TEST(ReadMesh, TruncatedBinaryStl) {

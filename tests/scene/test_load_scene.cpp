@@ -205,6 +205,10 @@ TEST(LoadScene, VolumeLawKeysAreChecked) {
   const std::string spheres =
       error_of("vh-spheres", edit("{\"law\": \"hertz-mindlin\"}", "{\"law\": \"volume-hertz\"}"));
   EXPECT_NE(spheres.find("need rigid mesh bodies"), std::string::npos) << spheres;
+  // volume-hertz's tangential stiffness is Mindlin's, from the overlap: a kt would be ignored.
+  const std::string vh_kt = error_of(
+      "vh-kt", edit("{\"law\": \"hertz-mindlin\"}", "{\"law\": \"volume-hertz\", \"kt\": 1e7}"));
+  EXPECT_NE(vh_kt.find("contact.kt: volume-hertz takes Mindlin's"), std::string::npos) << vh_kt;
   EXPECT_NE(error_of("vh-typo", edit("\"hertz-mindlin\"", "\"volume-herz\""))
                 .find("did you mean \"volume-hertz\""),
             std::string::npos);

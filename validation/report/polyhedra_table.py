@@ -1,14 +1,16 @@
 """The YADE polyhedra cross-check's table: agreement and cost side by side, from the comparison.json
 that each `yade.polyhedra.*` gate writes (`ctest -L yade` first).
 
-  python3 validation/report/polyhedra_table.py build/yade/polyhedra reports/yade
+  python3 validation/report/polyhedra_table.py build/yade/polyhedra reports/yade [BEFORE.csv]
 
 Writes OUT/polyhedra.md and OUT/polyhedra.csv: per case the body's vertex count, the step count and
 YADE's contact steps, the relative differences (asperity − YADE)/YADE of peak force, impulse and
 contact duration, both codes' CPU seconds for the whole impact (YADE's engine loop alone, a second
 run without its recorder) and their ratio, and YADE's CPU seconds per step in free flight, in
 contact on average, and in its first and last contact steps, beside asperity's CPU over its step
-count (mesh loading and tetrahedralization included).
+count (mesh loading and tetrahedralization included). With BEFORE.csv (an earlier polyhedra.csv),
+each case's asperity CPU from it beside today's (reports/yade/polyhedra-before-broad-phase.csv:
+the table before the broad phase stopped comparing tetrahedra of the same body).
 Every number comes from one run of both codes on one machine."""
 import csv
 import glob
@@ -59,6 +61,12 @@ def main():
     src, out = sys.argv[1], sys.argv[2]
     rows = sorted((row(p) for p in glob.glob(os.path.join(src, "*", "comparison.json"))),
                   key=lambda r: (r["vertices"], r["case"]))
+    before = {}
+    if len(sys.argv) > 3:
+        with open(sys.argv[3]) as f:
+            before = {r["case"]: float(r["asperity_cpu_s"]) for r in csv.DictReader(f)}
+    for r in rows:
+        r["asperity_cpu_s_before"] = before.get(r["case"])
     if not rows:
         sys.exit(f"polyhedra_table.py: {src}: no */comparison.json (run ctest -L yade first)")
     os.makedirs(out, exist_ok=True)
@@ -80,16 +88,16 @@ def main():
         "2 cores), so the ratios matter more than the seconds.",
         "",
         "| case | vertices | steps | in contact (YADE) | peak force | impulse | duration | "
-        "asperity CPU s | YADE CPU s | YADE / asperity | asperity CPU / steps | YADE free s/step | "
+        "asperity CPU s | asperity CPU s before | YADE CPU s | YADE / asperity | asperity CPU / steps | YADE free s/step | "
         "YADE contact s/step | YADE first contact step s | YADE last contact step s |",
-        "|---|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|",
+        "|---|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|",
     ]
     for r in rows:
         lines.append(
             f"| {r['case']} | {r['vertices']} | {r['steps']} | {fmt(r['yade_contact_steps'], 'd')} | "
             f"{r['peak_force_rel_diff']:.1e} | {r['impulse_rel_diff']:.1e} | "
             f"{r['contact_duration_rel_diff']:.1e} | {r['asperity_cpu_s']:.3g} | "
-            f"{r['yade_cpu_s']:.3g} | {fmt(r['yade_over_asperity'], '.0f')} | "
+            f"{fmt(r['asperity_cpu_s_before'], '.3g')} | {r['yade_cpu_s']:.3g} | {fmt(r['yade_over_asperity'], '.0f')} | "
             f"{fmt(r['asperity_cpu_per_step_s'], '.2e')} | {fmt(r['yade_free_step_s'], '.2e')} | "
             f"{fmt(r['yade_contact_step_s'], '.2e')} | {fmt(r['yade_first_contact_step_s'], '.2e')} | "
             f"{fmt(r['yade_last_contact_step_s'], '.2e')} |")

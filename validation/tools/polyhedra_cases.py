@@ -192,8 +192,7 @@ def friction_cases(cube):
     g = 9.81
     out = []
     v0, duration = 0.5, 0.05
-    # volume-linear only: volume-hertz with friction is refused in this build (docs/physics.md).
-    for law in ("volume-linear",):
+    for law in ("volume-linear", "volume-hertz"):
         name = f"{law}-cube-sliding-friction"
         speed = v0 - MU * g * duration
         expected = {
@@ -210,9 +209,25 @@ def friction_cases(cube):
                        "kinetic + contact (normal and spring) + gravity + dissipated is kept to "
                        "the integrator's error"},
         }
-        contact = {"law": law, "friction": MU, "kt": KT}
+        contact = {"law": law, "friction": MU}
         if law == "volume-linear":
+            contact["kt"] = KT
             contact["kv"] = KV
+        else:
+            expected["final_speed"]["rel_tol"] = 0.01
+            expected["final_speed"]["why"] = (
+                "Coulomb: a block sliding on a plane decelerates at μ g, v(T) = v0 − μ g T (measured "
+                "+0.55 %). 1 % of v(T) (2.4 % of the speed lost) because the undamped cube rocks "
+                "onto its leading edge and hops: friction at the base tips it, and an energy of V "
+                "alone has no rocking stiffness on a flat face (tilting about the face's centre "
+                "keeps V), so the tipping moment is balanced only by lifting the rear edge; the "
+                "cube touches in 6 % of the steps. At any instant the normal impulse then differs "
+                "from m g t by the hop's momentum (±1.6 % of m g T measured, ±0.7 % of v(T)), and "
+                "each touch-down starts the tangential spring from zero (Mindlin's stick phase)")
+            expected["energy_drift"]["why"] = (
+                "the energy dissipated equals the friction work μ m g d: the balance kinetic + "
+                "contact (normal and spring) + gravity + dissipated is kept to the integrator's "
+                "error (measured 6.2e-5)")
         scene = {
             "name": name, "duration": duration, "dt": "auto", "gravity": [0, 0, -g],
             "materials": {"granite": {"density": DENSITY, "young": 5e10, "poisson": 0.25,
@@ -233,8 +248,9 @@ def friction_cases(cube):
         out.append({"case": name,
                     "description": f"A {a} m granite cube sliding on its face at {v0} m/s on a "
                                    f"plane under gravity, {law} with Coulomb friction μ = {MU} "
-                                   f"(kt = {KT:g} N/m): deceleration μ g, dissipated energy = "
-                                   "friction work",
+                                   + (f"(kt = {KT:g} N/m)" if law == "volume-linear"
+                                      else "(Mindlin's k_t)")
+                                   + ": deceleration μ g, dissipated energy = friction work",
                     "tags": ["polyhedra", law, "friction"], "scene": scene,
                     "expected": expected})
     # The oblique drop of the cube with friction: YADE's volumetric law with its friction.

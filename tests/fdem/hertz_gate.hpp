@@ -1,0 +1,138 @@
+// The Hertz convergence gate (issue 11, item 2) for any sequence of levels of hertz_series.hpp:
+// shared by test_hertz_convergence.cpp (label slow) and test_hertz_full.cpp (label hertz-full).
+#pragma once
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <cstdio>
+#include <initializer_list>
+#include <vector>
+
+#include "finite_sphere.hpp"
+#include "hertz_series.hpp"
+
+namespace asperity::fdem::hertz {
+
+inline const double kRatio = std::sqrt(2.0);  // refinement ratio between levels
+
+struct Sequence {
+  std::vector<Level> levels;  // coarsest first
+  Rate peak, duration;
+  Rate peak_filtered;  // of the peak after the T/20 moving average (hertz_series.hpp)
+};
+
+// Three whole-field levels (s falling by √2) at the block approach speed `speed`, printed as
+// the table of reports/fem/hertz_convergence.md has them.
+inline Sequence sequence(Setup setup, double speed, std::initializer_list<double> scales) {
+  Sequence q;
+  for (const double s : scales) {
+    const Level l = hertz::run_level(setup, s, speed);
+    EXPECT_TRUE(l.failure.empty()) << l.failure;
+    std::printf(
+        "%s a/R %.3f  s %.3f  h %.2f mm  tets %6ld  run %.1f s CPU  peak %+.4f (filtered %+.4f)  "
+        "duration %+.4f  "
+        "impulse/2mv %.4f  momentum/mv %.1e  (%ld steps, dt %.3g s)\n",
+        setup == Setup::block ? "block" : "pair ", l.a_over_r, s, l.h * 1e3, l.tets, l.cpu,
+        l.err_force, l.err_force_filtered, l.err_duration, l.impulse_ratio, l.momentum, l.steps,
+        l.dt);
+    std::fflush(stdout);
+    q.levels.push_back(l);
+  }
+  const std::vector<Level>& l = q.levels;
+  q.peak = hertz::richardson(l[0].err_force, l[1].err_force, l[2].err_force, kRatio);
+  q.duration = hertz::richardson(l[0].err_duration, l[1].err_duration, l[2].err_duration, kRatio);
+  q.peak_filtered = hertz::richardson(l[0].err_force_filtered, l[1].err_force_filtered,
+                                      l[2].err_force_filtered, kRatio);
+  std::printf(
+      "  order: peak %.2f, duration %.2f; finest level's own error: peak %+.4f, duration %+.4f; "
+      "limit − Hertz: peak %+.4f, duration %+.4f; filtered peak: order %.2f, limit %+.4f\n",
+      q.peak.order, q.duration.order, q.peak.finest_error, q.duration.finest_error, q.peak.limit,
+      q.duration.limit, q.peak_filtered.order, q.peak_filtered.limit);
+  return q;
+}
+
+// The convergence gate of test_hertz_convergence.cpp, for any sequence: errors falling at every
+// level, an observed order above 0.75 (linear tetrahedra converge at first order or better in
+// the contact compliance; below that the levels have stopped converging), the finest level
+// within 2 % of the extrapolated limit (the issue's 2 %, applied to what the solver controls),
+// and the rebound impulse 2mv within 0.5 % (vibration keeps 0.01–0.02 % on these meshes).
+// `filtered`: gate the peak after the T/20 moving average instead of the raw peak. The pair
+// needs it: its deformable–deformable contact rings (raw peak 3.2 points above the filtered one
+// at s = 1, and rising from s = √2 to 1 while the filtered peak and the duration fall).
+inline void expect_converges(const Sequence& q, const char* what, bool filtered = false) {
+  const std::vector<Level>& l = q.levels;
+  const auto peak_error = [&](const Level& x) {
+    return filtered ? x.err_force_filtered : x.err_force;
+  };
+  const Rate& peak = filtered ? q.peak_filtered : q.peak;
+  for (std::size_t i = 1; i < l.size(); ++i) {
+    EXPECT_LT(std::abs(peak_error(l[i])), std::abs(peak_error(l[i - 1]))) << what << " level " << i;
+    EXPECT_LT(std::abs(l[i].err_duration), std::abs(l[i - 1].err_duration))
+        << what << " level " << i;
+  }
+  for (const Level& x : l) EXPECT_NEAR(x.impulse_ratio, 1.0, 0.005) << what << " s " << x.s;
+  EXPECT_GT(peak.order, 0.75) << what;
+  EXPECT_GT(q.duration.order, 0.75) << what;
+  EXPECT_LT(std::abs(peak.finest_error), 0.02) << what;
+  EXPECT_LT(std::abs(q.duration.finest_error), 0.02) << what;
+}
+
+// The finite sphere's impact at the sequence's mass and speed (validation/reference/
+// finite_sphere.hpp: a linear-elastic sphere on a rigid frictionless plane, axisymmetric
+// quadratic finite elements, quasi-static, no wave energy), as deviations from its own Hertz
+// (the same E, ν, R, mass and speed as the 3D run's).
+struct FiniteSphere {
+  double peak = 0, duration = 0;
+};
+inline FiniteSphere finite_sphere(const Sequence& q) {
+  const Material m = scenes::rubbery();
+  const Level& l = q.levels.back();
+  const reference::FiniteSphereImpact r =
+      reference::finite_sphere_impact_with_mass(m.young, m.poisson, l.mass, kRadius, l.speed);
+  return {.peak = r.peak_force / r.hertz_peak_force - 1,
+          .duration = r.duration / r.hertz_duration - 1};
+}
+
+// The issue's 2 %, held against the finite sphere instead of Hertz's half-space: the 3D
+// Richardson limit within 2 % of the reference in peak force and duration. What separates them
+// besides the discretization: the 3D material is neo-Hookean, the reference linear (about
+// −0.5 % on the peak at a/R = 0.107, reports/fem/finite_sphere.md), and the 3D run carries wave
+// energy the quasi-static reference does not.
+inline void expect_matches_finite_sphere(const Sequence& q, const char* what,
+                                         bool filtered = false) {
+  const FiniteSphere f = finite_sphere(q);
+  const double peak = filtered ? q.peak_filtered.limit : q.peak.limit;
+  std::printf(
+      "  %s: limit − Hertz %+.4f / %+.4f, finite sphere − Hertz %+.4f / %+.4f (peak / "
+      "duration)\n",
+      what, peak, q.duration.limit, f.peak, f.duration);
+  EXPECT_NEAR(peak, f.peak, 0.02) << what;
+  EXPECT_NEAR(q.duration.limit, f.duration, 0.02) << what;
+}
+
+// Least-squares line y = c0 + c1 x with the standard errors of both coefficients from the
+// residuals (n > 2; NaN otherwise).
+struct Line {
+  double c0 = 0, c1 = 0, se0 = 0, se1 = 0;
+};
+inline Line fit_line(const std::vector<double>& x, const std::vector<double>& y) {
+  const double n = static_cast<double>(x.size());
+  double mx = 0, my = 0;
+  for (std::size_t i = 0; i < x.size(); ++i) mx += x[i] / n, my += y[i] / n;
+  double sxx = 0, sxy = 0;
+  for (std::size_t i = 0; i < x.size(); ++i) {
+    sxx += (x[i] - mx) * (x[i] - mx);
+    sxy += (x[i] - mx) * (y[i] - my);
+  }
+  Line l{.c1 = sxy / sxx};
+  l.c0 = my - l.c1 * mx;
+  double ss = 0;
+  for (std::size_t i = 0; i < x.size(); ++i) ss += std::pow(y[i] - l.c0 - l.c1 * x[i], 2);
+  const double s2 = x.size() > 2 ? ss / (n - 2) : std::nan("");
+  l.se0 = std::sqrt(s2 * (1 / n + mx * mx / sxx));
+  l.se1 = std::sqrt(s2 / sxx);
+  return l;
+}
+
+}  // namespace asperity::fdem::hertz

@@ -1,0 +1,100 @@
+// The Hertz convergence gates that take too long for CI (issue 11, item 2; label `hertz-full`,
+// run with `ctest --test-dir build -L hertz-full`): the head-on pair of deformable spheres, and
+// the Richardson limits of the sphere on a block over a/R = 0.05–0.15, whose distance from Hertz
+// must fall towards 0 as a/R → 0. Sequences: tests/fdem/hertz_series.hpp; figures:
+// reports/fem/hertz_convergence.md.
+#include <gtest/gtest.h>
+
+#include <cmath>
+
+#include "hertz_gate.hpp"
+
+namespace asperity::fdem {
+namespace {
+
+using hertz::expect_converges;
+using hertz::expect_matches_finite_sphere;
+using hertz::kRatio;
+using hertz::Level;
+using hertz::sequence;
+using hertz::Sequence;
+using hertz::Setup;
+
+// The head-on pair: two equal deformable spheres (the second the mirror image of the first through
+// the contact plane) at relative speed 2v, a/R = 0.15, against the sphere on the fixed block at
+// v. Hertz for the pair (m/2, R/2, E*/2, 2v) is the block's at v, and so is the exact answer: the
+// mid-plane is a frictionless plane of symmetry. The pair's contact is deformable against
+// deformable (both bodies' potentials), the block's deformable against one large rigid
+// tetrahedron, so their agreement checks the contact independently. The pair's contact costs
+// about 10× the block's per step (18 000 pair evaluations per step against 3 000): 146, 259 and
+// 386 s of run CPU at s = 2, √2, 1, about 15 min for the test with its block sequence.
+TEST(HertzPair, HeadOnPairConvergesAndMatchesTheBlock) {
+  const double speed = hertz::speed_for(0.15, scenes::rubbery());
+  const Sequence pair = sequence(Setup::pair, speed, {2.0, kRatio, 1.0});
+  const Sequence block = sequence(Setup::block, speed, {2.0, kRatio, 1.0});
+  // The pair's raw peak rings (+10.1, +8.6, +9.2 % at s = 2, √2, 1: not falling; +7.6, +6.5,
+  // +6.0 % after the T/20 moving average: order 1.7, the finest level 0.7 % from its limit), so its
+  // peak is gated filtered, and so is the block's where the two are compared. Against the finite
+  // sphere, a/R = 0.15 is gated on the block alone (test_hertz_convergence.cpp, raw peak: 1.6
+  // points below it): the filtered limits of these sequences sit 2.5 points below the reference
+  // (block +5.2 % against +7.7 %), the open finding of reports/fem/hertz_convergence.md, so only
+  // the duration is held against it here.
+  expect_converges(pair, "pair", true);
+  expect_converges(block, "block");
+  const hertz::FiniteSphere f = hertz::finite_sphere(pair);
+  EXPECT_NEAR(pair.duration.limit, f.duration, 0.02);
+  // Momentum: internal and contact forces are equal and opposite pair by pair, so the total
+  // momentum (zero) is conserved to round-off: 1e-12 of one sphere's (measured 4e-16 to 6e-15).
+  for (const Level& x : pair.levels) EXPECT_LT(x.momentum, 1e-12) << "s " << x.s;
+  // Level by level the two see the same sphere mesh: their durations and filtered peaks agree
+  // within 0.5 % (durations 0.13, 0.06, 0.04 points apart at s = 2, √2, 1, filtered peaks 0.08,
+  // 0.07, 0.07; filtered limits +5.28 and +5.18 %, duration limits −4.29 and −4.16 %; the contact
+  // layer's own compliance, about h/(4αa) of the approach, is a few tenths of a percent).
+  for (std::size_t i = 0; i < pair.levels.size(); ++i) {
+    EXPECT_NEAR(pair.levels[i].err_duration, block.levels[i].err_duration, 0.005) << "level " << i;
+    EXPECT_NEAR(pair.levels[i].err_force_filtered, block.levels[i].err_force_filtered, 0.005)
+        << "level " << i;
+  }
+  // The two limits are one answer (the symmetric problem), each extrapolated from its own
+  // sequence: 2 % is the issue's tolerance.
+  EXPECT_NEAR(pair.peak_filtered.limit, block.peak_filtered.limit, 0.02);
+  EXPECT_NEAR(pair.duration.limit, block.duration.limit, 0.02);
+}
+
+// "Converges to Hertz": Hertz is the law of two half-spaces, so the finite sphere's limit may
+// differ from it by a term that vanishes with the contact size a/R. The Richardson limits of the
+// block sequences at a/R = 0.05, 0.08, 0.107, 0.15 (s = 2, √2, 1; the contact zone's elements and
+// facets scaled with a, hertz_series.hpp), fitted by a line in a/R: the intercept is the limit's
+// distance from Hertz as a/R → 0, which must be within the issue's 2 % (measured on bench_hertz's
+// runs of the same levels, a/R = 0.05 at s = 2√2, 2, √2: −0.8 ± 1.0 % in peak, −1.2 ± 0.7 % in
+// duration), and the distance must shrink with the contact at every step (the slope, the
+// finite-sphere coefficient, is printed; measured +0.49 ± 0.10 in peak and −0.21 ± 0.06 in
+// duration, the finite sphere's +0.55 and −0.37 fitted the same way). Not run end to end yet: a/R =
+// 0.05 at s = 1 (about 10 min of CPU) never has been.
+TEST(HertzSeries, LimitTendsToHertzAsTheContactShrinks) {
+  std::vector<double> ar, peak, duration;
+  for (const double a : {0.05, 0.08, 0.107, 0.15}) {
+    const double speed = a == 0.107 ? hertz::kSpeed : hertz::speed_for(a, scenes::rubbery());
+    const Sequence q = sequence(Setup::block, speed, {2.0, kRatio, 1.0});
+    expect_converges(q, "block");
+    expect_matches_finite_sphere(q, "block");
+    ar.push_back(q.levels.back().a_over_r);
+    peak.push_back(q.peak.limit);
+    duration.push_back(q.duration.limit);
+  }
+  for (std::size_t i = 1; i < ar.size(); ++i) {
+    EXPECT_LT(std::abs(peak[i - 1]), std::abs(peak[i])) << "a/R " << ar[i - 1];
+    EXPECT_LT(std::abs(duration[i - 1]), std::abs(duration[i])) << "a/R " << ar[i - 1];
+  }
+  const hertz::Line p = hertz::fit_line(ar, peak);
+  const hertz::Line d = hertz::fit_line(ar, duration);
+  std::printf(
+      "limit − Hertz = c0 + c1 a/R: peak c0 %+.4f ± %.4f, c1 %+.3f ± %.3f; duration c0 %+.4f ± "
+      "%.4f, c1 %+.3f ± %.3f\n",
+      p.c0, p.se0, p.c1, p.se1, d.c0, d.se0, d.c1, d.se1);
+  EXPECT_LT(std::abs(p.c0), 0.02);
+  EXPECT_LT(std::abs(d.c0), 0.02);
+}
+
+}  // namespace
+}  // namespace asperity::fdem
