@@ -2,16 +2,25 @@
 """The cost of the bench_fem collision over the particle set (issue 11, item 6), from the console
 output of `bench_fem --benchmark_filter=CollisionSet --set-particles=all > LOG` (read line by
 line, so a run stopped part-way still gives the particles it finished): per resolution the
-median and worst CPU seconds, and per particle the exponent log(cpu_1000 / cpu_100) / log(10).
-Prints a Markdown table.
-Usage: collision_cost_table.py LOG"""
+median and worst CPU seconds, and per particle the exponent log(cpu_1000 / cpu_100) / log(10)
+and the least-squares slope of log cpu against log N over every resolution it ran (100, 250,
+500, 1000). Prints a Markdown table; with --csv OUT also writes one row per run.
+Usage: collision_cost_table.py LOG [--csv OUT]"""
 import math
 import re
 import statistics
 import sys
 
 
-def main(path):
+def slope(points):
+    """Least-squares slope of log y against log x."""
+    xs = [math.log(x) for x, _ in points]
+    ys = [math.log(y) for _, y in points]
+    mx, my = sum(xs) / len(xs), sum(ys) / len(ys)
+    return sum((x - mx) * (y - my) for x, y in zip(xs, ys)) / sum((x - mx) ** 2 for x in xs)
+
+
+def main(path, csv_path=None):
     runs = {}
     units = {"": 1, "k": 1e3, "m": 1e-3, "u": 1e-6, "n": 1e-9}
     for line in open(path):
@@ -43,9 +52,27 @@ def main(path):
         hi = max(k, key=lambda x: x[1])
         print(f"\nExponent 100 → 1000 over {len(k)} particles: median {statistics.median(e):.2f}, "
               f"min {min(e):.2f}, max {hi[1]:.2f} ({hi[0]}).")
+        fits = [(p, slope([(n, r[n]["cpu_s"]) for n in sorted(r)])) for p, r in runs.items()
+                if len(r) >= 3]
+        if fits:
+            f = [x for _, x in fits]
+            hi = max(fits, key=lambda x: x[1])
+            print(f"Least-squares exponent over {', '.join(map(str, faces))} faces, "
+                  f"{len(fits)} particles: median {statistics.median(f):.2f}, min {min(f):.2f}, "
+                  f"max {hi[1]:.2f} ({hi[0]}); {sum(x > 1.4 for x in f)} above 1.4.")
         over = [p for p, r in runs.items() if 1000 in r and r[1000]["cpu_s"] > 2]
         print(f"Over 2 s at 1000 faces: {len(over)} ({', '.join(sorted(over)) or 'none'}).")
 
 
+    if csv_path:
+        keys = ["cpu_s", "steps", "dt", "dt_element", "dt_contact", "tets", "peak_N"]
+        with open(csv_path, "w") as out:
+            out.write("particle,faces," + ",".join(keys) + "\n")
+            for p in sorted(runs):
+                for n in sorted(runs[p]):
+                    out.write(f"{p},{n}," + ",".join(f"{runs[p][n].get(k, float('nan')):.6g}"
+                                                     for k in keys) + "\n")
+
+
 if __name__ == "__main__":
-    main(sys.argv[1])
+    main(sys.argv[1], sys.argv[sys.argv.index("--csv") + 1] if "--csv" in sys.argv else None)

@@ -120,8 +120,9 @@ BENCHMARK(BM_Collision)
 
 // The same collision for each particle of the generated set (data/particles/set.json: shape,
 // seed and source resolution as the set gives them, the size the benchmark's 5 cm), at N surface
-// triangles: the cost over 50 shapes, not one seed (issue 11, item 6). Registered by main for
-// the particles --set-particles=K names (the first K; default 2, the smoke test's).
+// triangles (100, 250, 500, 1000): the cost over 50 shapes, not one seed (issue 11, item 6).
+// Registered by main for the particles --set-particles=K names (the first K; default 2, the
+// smoke test's).
 void BM_CollisionSet(benchmark::State& state, geometry::ParticleDef pd, long faces) {
   pd.size = 0.05;
   geometry::PipelineOptions o;
@@ -141,7 +142,7 @@ void register_set(int count) {
                                    .angularity = p.at("angularity").get<double>(),
                                    .roughness = p.at("roughness").get<double>(),
                                    .faces = p.at("faces").get<long>()};
-    for (const long faces : {100L, 1000L}) {
+    for (const long faces : {100L, 250L, 500L, 1000L}) {
       const std::string name =
           "BM_CollisionSet/" + p.at("name").get<std::string>() + "/" + std::to_string(faces);
       benchmark::RegisterBenchmark(name.c_str(), BM_CollisionSet, pd, faces)

@@ -16,6 +16,7 @@
 
 #include "core/error.hpp"
 #include "core/vec.hpp"
+#include "fem/tet_elements.hpp"
 #include "geometry/element_size.hpp"
 #include "geometry/tetgen_call.hpp"
 
@@ -172,6 +173,15 @@ StepScales step_scales(const TetMesh& mesh) {
                    (p[(i + 2) % 4] - p[(i + 1) % 4]).cross(p[(i + 3) % 4] - p[(i + 1) % 4]).norm());
     out.least_height = std::min(out.least_height, six_v / largest_area2);
     for (int k = 0; k < 4; ++k) volume[mesh.tets(k, t)] += six_v / 6.0;
+  }
+  // A tetrahedron of no volume in floating point (make_tet_elements refuses it) has no step.
+  try {
+    out.element_frequency =
+        fem::element_critical_step(
+            fem::make_tet_elements(mesh.nodes, mesh.tets, 1.0, 0.25, 1.0, 0.0, "tetrahedralize"))
+            .omega_max;
+  } catch (const InputError&) {
+    out.element_frequency = std::numeric_limits<double>::infinity();
   }
   const std::vector<SurfaceTetHeight> h = surface_tet_heights(mesh);
   std::vector<double> stiffness(volume.size(), 0.0);
@@ -330,7 +340,8 @@ TetMesh tetrahedralize(const SurfaceMesh& input, const TetOptions& options_in) {
   const int nv = static_cast<int>(surface.vertices.cols());
   const std::vector<SurfaceTetHeight> h0 = surface_tet_heights(tm);
   // The mesh of the round with the largest predicted step, as a ratio to the mesh without lifts:
-  // the smaller of the element and contact step ratios (each a lower bound of the combined one).
+  // the smaller of the element and contact step ratios (each a lower bound of the combined one),
+  // the element one from the mass-split bound itself (StepScales).
   const StepScales s0 = step_scales(tm);
   TetMesh best = tm;
   double best_gain = 1;
@@ -413,7 +424,7 @@ TetMesh tetrahedralize(const SurfaceMesh& input, const TetOptions& options_in) {
     if (!next.mesh) break;  // TetGen failed on these walls: keep the best mesh so far
     tm = std::move(*next.mesh);
     const StepScales sc = step_scales(tm);
-    const double gain = std::min(sc.least_height / s0.least_height,
+    const double gain = std::min(s0.element_frequency / sc.element_frequency,
                                  std::sqrt(s0.contact_frequency2 / sc.contact_frequency2));
     if (gain > best_gain) best = tm, best_gain = gain;
   }

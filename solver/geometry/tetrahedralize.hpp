@@ -74,8 +74,17 @@ std::vector<SurfaceTetHeight> surface_tet_heights(const TetMesh& mesh);
 // proportional to the least height 3V/A_max over the tetrahedra. Contact: the Gershgorin bound
 // of time_step.hpp, Σ_faces p A (1/h) / 3 over the node's lumped mass, is proportional to
 // Σ_faces A/H over Σ_tets V at the node (H = 3V/A of the face's tetrahedron).
+//
+// The least height is a proxy only: the element step is the mass-split bound of the assembled
+// mesh (fem::element_critical_step), in which a flat tetrahedron between large neighbours holds
+// their mass. element_frequency is that bound for a unit material (E = 1 Pa, ν = 0.25,
+// ρ = 1 kg/m³), so dt_element ∝ 1/element_frequency for every material of that ν. Lifting ranks
+// its rounds by it: on ballast_37 of the study at 250 faces the first round lowered the least
+// height to 0.96× but raised the element step 6.6× (the flat tetrahedron it left lies between
+// long-edged ones), and the least height alone threw that round away.
 struct StepScales {
-  double least_height = 0;        // m; dt_element ∝ least_height
+  double least_height = 0;        // m; a flat tetrahedron's share of dt_element
+  double element_frequency = 0;   // 1/m (unit material); dt_element ∝ 1/element_frequency
   double contact_frequency2 = 0;  // 1/m²; dt_contact ∝ 1/√contact_frequency2
 };
 StepScales step_scales(const TetMesh& mesh);
