@@ -11,7 +11,7 @@ matplotlib's 3-D polygons and 2-D triangles need nothing beyond deps/debian-pack
                                   .svg (contact pressure seen from below with the Hertz contact
                                   radius, the von Mises section under the contact, pressure
                                   against radius beside Hertz's) and .json (the numbers)
-  --study DIR [--resolution N] [--placement P]
+  --study DIR [--resolution N] [--placement P]  (P: the first placement the study ran)
                                   each particle of an `asperity study` folder, fem and rigid at
                                   N triangles side by side: DIR/pictures/impact_PARTICLE.png,
                                   which `asperity report` shows beside the force curves
@@ -292,9 +292,14 @@ def study_pictures(asperity, study, resolution, placement, work):
     os.makedirs(out_dir, exist_ok=True)
     made = []
     for particle in sorted(os.listdir(cases)):
+        # Without --placement, the first placement the study ran for this particle.
+        placements = [placement] if placement else ["centroid", "lowest"]
+        placement_here = next((p for p in placements if all(
+            os.path.exists(os.path.join(cases, particle, f"{m}-{resolution}-{p}", "scene.json"))
+            for m in ("fem", "rigid"))), placements[0])
         runs = {}
         for model in ("fem", "rigid"):
-            case = os.path.join(cases, particle, f"{model}-{resolution}-{placement}")
+            case = os.path.join(cases, particle, f"{model}-{resolution}-{placement_here}")
             scene = os.path.join(case, "scene.json")
             if not os.path.exists(scene):
                 break
@@ -320,8 +325,12 @@ def study_pictures(asperity, study, resolution, placement, work):
         surface_panel(fig.add_subplot(1, 3, 2, projection="3d"), fem, p_fem / 1e6, p_max, "YlOrRd",
                       f"fem: contact pressure (MPa)\npeak force {runs['fem'][0]['peak_force']:.0f} N")
         surface_panel(fig.add_subplot(1, 3, 3, projection="3d"), rigid, p_rigid / 1e6, p_max, "YlOrRd",
-                      f"rigid: contact pressure (MPa)\npeak force {runs['rigid'][0]['peak_force']:.0f} N")
-        fig.suptitle(f"{particle}, {resolution} triangles, placed by {placement}: the peak-force frames, "
+                      (f"rigid: contact pressure (MPa)\npeak force {runs['rigid'][0]['peak_force']:.0f} N"
+                       if p_rigid.max() > 0 else
+                       # The volume laws act on the body at the overlap's centroid: no nodal forces.
+                       f"rigid (volume law): one force at the overlap centroid,\nno surface pressure; "
+                       f"peak force {runs['rigid'][0]['peak_force']:.0f} N"))
+        fig.suptitle(f"{particle}, {resolution} triangles, placed by {placement_here}: the peak-force frames, "
                      "seen from below", fontsize=10)
         fig.subplots_adjust(left=0.01, right=0.97, top=0.86, bottom=0.02, wspace=0.08)
         save(fig, out_dir, f"impact_{particle}", svg=False)
@@ -336,7 +345,7 @@ def main():
     ap.add_argument("--hertz-out")
     ap.add_argument("--study")
     ap.add_argument("--resolution", default="1000")
-    ap.add_argument("--placement", default="centroid")
+    ap.add_argument("--placement", help="centroid or lowest (default: the first the study ran)")
     a = ap.parse_args()
     if a.hertz and not os.path.exists(a.hertz):
         raise BadInput(f"{a.hertz}: --hertz: no such scene")
@@ -353,6 +362,10 @@ def main():
         if a.study:
             made = study_pictures(a.asperity, a.study, a.resolution, a.placement, work)
             print(f"impact_pictures: {len(made)} particle pictures in {a.study}/pictures")
+            if not made:
+                print(f"impact_pictures: warning: no particle of {a.study} has fem and rigid cases at "
+                      f"{a.resolution} triangles" + (f", placed by {a.placement}" if a.placement else ""),
+                      file=sys.stderr)
     finally:
         shutil.rmtree(work, ignore_errors=True)
 
