@@ -395,6 +395,16 @@ def accuracy_cost_chart(out, candidates, uncertainty, doc):
               "reference's own uncertainty; the reference itself (error 0) is not drawn")
 
 
+REPO = os.path.dirname(os.path.dirname(os.path.dirname(os.path.abspath(__file__))))
+
+
+def shown(path):
+    """A path as a report shows it: relative to the repository when inside it, so that a committed
+    report does not carry the machine's folders."""
+    full = os.path.abspath(path)
+    return os.path.relpath(full, REPO) if full.startswith(REPO + os.sep) else path
+
+
 def stability_files(stab_dir):
     """stability.csv files (asperity stability --out) or map.csv files (stability maps) under stab_dir."""
     found = []
@@ -408,7 +418,7 @@ def stability_section(out, stab_dir, doc):
     if not files:
         return
     doc.h(2, "Stability map and accuracy against step")
-    doc.p(f"From {stab_dir}: each time step tried, as a multiple of the predicted critical step (asperity "
+    doc.p(f"From {shown(stab_dir)}: each time step tried, as a multiple of the predicted critical step (asperity "
           "stability); green stable, red flagged unstable.")
     colours = {"ok": "tab:green", "no_contact": "tab:grey", "unstable": "tab:red"}
     fig, axes = plt.subplots(len(files), 2, figsize=(10, 3.2 * len(files)), squeeze=False)
@@ -461,7 +471,7 @@ def yade_section(out, yade_dir, doc):
     if os.path.exists(table):
         rows = read_csv(table)
         shutil.copyfile(table, os.path.join(out, "yade_crosscheck.csv"))
-        doc.p(f"From {table} (asperity crosscheck, {len(rows)} cases): relative differences (asperity - YADE) / YADE, "
+        doc.p(f"From {shown(table)} (asperity crosscheck, {len(rows)} cases): relative differences (asperity - YADE) / YADE, "
               "largest magnitude per contact law, and the CPU ratio asperity/YADE. Every case: yade_crosscheck.csv.")
         laws = sorted({r["law"] for r in rows})
         out_rows = []
