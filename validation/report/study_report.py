@@ -19,6 +19,10 @@ import sys
 import matplotlib
 
 matplotlib.use("Agg")
+# The same data gives the same SVG (fixed element ids, no date), so regenerated charts do not
+# show as changed when their content did not.
+matplotlib.rcParams["svg.hashsalt"] = "asperity"
+matplotlib.rcParams["svg.fonttype"] = "path"
 import matplotlib.pyplot as plt  # noqa: E402
 import matplotlib.ticker  # noqa: E402
 
@@ -205,7 +209,7 @@ class Doc:
 def save_chart(fig, out, name, dpi):
     """The chart as PNG (the report's) and as SVG beside it (vector, for papers)."""
     fig.savefig(os.path.join(out, name), dpi=dpi)
-    fig.savefig(os.path.join(out, name[:-4] + ".svg"))
+    fig.savefig(os.path.join(out, name[:-4] + ".svg"), metadata={"Date": None})
     plt.close(fig)
 
 
@@ -456,7 +460,7 @@ def stability_section(out, stab_dir, doc):
         shutil.copyfile(path, os.path.join(out, "stability_" + label.replace(os.sep, "_")))
     fig.tight_layout()
     fig.savefig(os.path.join(out, "stability.png"), dpi=72)
-    fig.savefig(os.path.join(out, "stability.svg"))
+    fig.savefig(os.path.join(out, "stability.svg"), metadata={"Date": None})
     plt.close(fig)
     doc.image("stability.png", "Stability map and accuracy against time step")
     doc.table(["sweep", "steps tried", "largest stable factor", "smallest unstable factor"], summary)
