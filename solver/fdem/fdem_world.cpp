@@ -115,8 +115,13 @@ void contact_forces(World& w, double dt) {
       continue;
     }
     ++w.contact_evaluations;
-    const contact::PotentialPairForce c =
-        contact::munjiza_potential(a, b, w.penalty, w.want_energy);
+    // The pair's penalty: the smaller of its two tetrahedra's where limit_face_penalty lowered
+    // some (one p per pair keeps the pair force the gradient of one potential).
+    const double penalty =
+        w.tet_penalty_scale.empty()
+            ? w.penalty
+            : w.penalty * std::min(w.tet_penalty_scale[p.a], w.tet_penalty_scale[p.b]);
+    const contact::PotentialPairForce c = contact::munjiza_potential(a, b, penalty, w.want_energy);
     if (!c.touching()) {
       p.spring.setZero();
       continue;
@@ -666,7 +671,17 @@ World make_world(const WorldDef& def) {
   set_face_stiffness(w, surface.faces);
   w.penalty_asked = w.penalty;
   if (w.law == ContactLaw::potential && def.contact.max_contact_factor > 0) {
-    limit_penalty(w, def.contact.max_contact_factor);
+    switch (def.contact.contact_step_fix) {
+      case ContactStepFix::penalty:
+        limit_penalty(w, def.contact.max_contact_factor);
+        break;
+      case ContactStepFix::face_penalty:
+        limit_face_penalty(w, def.contact.max_contact_factor);
+        break;
+      case ContactStepFix::mass:
+        scale_contact_mass(w, def.contact.max_contact_factor);
+        break;
+    }
   }
 
   w.x_initial = w.x;

@@ -40,6 +40,14 @@ struct BodyDef {
 // contact/volume_linear.hpp, geometry in contact/overlap_volume.hpp).
 enum class ContactLaw : std::uint8_t { potential, volume_hertz, volume_linear };
 
+// How a world meets ContactDef::max_contact_factor (issue 11, item 5; fdem/time_step.hpp, the
+// accuracy of each in reports/fem/mesh_step.md):
+//   penalty: the one penalty p lowered for every face (limit_penalty);
+//   face_penalty: p lowered only on the faces whose nodes set the step, each by what its nodes
+//     need (limit_face_penalty): the penalty scaled with the element under it;
+//   mass: mass added to the surface nodes whose contact springs set the step (scale_contact_mass).
+enum class ContactStepFix : std::uint8_t { penalty, face_penalty, mass };
+
 // Contact parameters.
 struct ContactDef {
   ContactLaw law = ContactLaw::potential;
@@ -65,6 +73,7 @@ struct ContactDef {
   // fdem/time_step.hpp; issue 11). Scenes that give neither penalty nor penalty_alpha get 2
   // (run/run_fdem.cpp); 0 (here the default): p as asked.
   double max_contact_factor = 0;
+  ContactStepFix contact_step_fix = ContactStepFix::penalty;  // how (above)
 };
 
 struct WorldDef {
@@ -146,6 +155,11 @@ struct World {
   std::vector<double> surface_tet_height;
   double penalty = 0;        // Pa
   double penalty_asked = 0;  // Pa, α·E or the given p, before limit_penalty lowered it
+  // Per contact tetrahedron, the factor (≤ 1) on `penalty` that limit_face_penalty left; a pair
+  // takes the smaller of its two. Empty: 1 everywhere.
+  std::vector<double> tet_penalty_scale;
+  // Per node, the lumped mass scale_contact_mass added (kg, already in `mass`); empty: none.
+  std::vector<double> added_mass;
   double friction = 0;
   ContactLaw law = ContactLaw::potential;
   double kv = 0;  // N/m³

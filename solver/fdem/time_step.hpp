@@ -64,6 +64,27 @@ CriticalStep critical_step(const World& world);
 // Rigid bodies have no element limit and are left alone.
 double limit_penalty(World& world, double factor);
 
+// The same bound met locally (ContactStepFix::face_penalty): the penalty is lowered only on the
+// surface faces whose nodes set the step, each node i by s_i = min(1, γ ω_e² m_i / c_i) (c_i =
+// Σ k_f/3 over its faces, the Gershgorin row of its face springs; ω_e the body's element bound),
+// a face by the least s of its nodes and a contact tetrahedron by the least s of its surface nodes
+// (World::tet_penalty_scale; a pair takes the smaller of its two). γ = factor² − 1 meets the
+// factor by Weyl's sum alone (ω² ≤ ω_e² + max_i s_i c_i / m_i ≤ factor² ω_e²); regula falsi on
+// the combined bound then raises γ as far as the factor allows, six evaluations. The penalty of
+// a face is so scaled with the stiffness and mass of the element under it: large elements keep
+// α as asked, the small or thin ones that set the step get less. Returns the least face scale.
+double limit_face_penalty(World& world, double factor);
+
+// The same bound met by contact (nodal) mass scaling (ContactStepFix::mass): each surface node
+// i whose face springs set the step gets the lumped mass c_i / (γ ω_e²) instead of m_i where that
+// is more (World::added_mass, also in World::mass), γ found as in limit_face_penalty; the penalty
+// stays as asked. Forces are unchanged, so linear momentum Σ m v (with the added mass) is
+// conserved exactly as before, but the body starts with (m + Δm) v and ½ (m + Δm) v²: the impact
+// is that of a heavier body by Δm/m (a Hertz peak ∝ m^{3/5}, duration ∝ m^{2/5}), with the added
+// mass on the surface where it also slows the local response. Returns the largest Δm/m over
+// the bodies (0: nothing added).
+double scale_contact_mass(World& world, double factor);
+
 // The surface faces (indices into World::face_nodes) of rigid body `rigid` (index into
 // World::rigid) that can be pressed in this scene, with the largest penetration δ_max (m) along
 // the approach direction n, or depth < 0 and every face of the body (the fallback).

@@ -141,7 +141,8 @@ double split_eigenvalue(const Eigen::Matrix<double, 12, 12>& k, const double m[4
 }  // namespace
 
 ElementStep element_critical_step(const TetElements& e,
-                                  const std::vector<ElementExtraStiffness>& extra) {
+                                  const std::vector<ElementExtraStiffness>& extra,
+                                  const std::vector<double>& added_mass) {
   ElementStep out;
   const int n = e.size();
   if (n == 0) return out;
@@ -164,6 +165,9 @@ ElementStep element_critical_step(const TetElements& e,
       share[4 * t + a] = k[t].block<3, 3>(3 * a, 3 * a).trace();
       node_sum[i] += share[4 * t + a];
     }
+  }
+  if (!added_mass.empty()) {
+    for (int i = lo; i <= hi; ++i) node_mass[i - lo] += added_mass[static_cast<std::size_t>(i)];
   }
   for (int t = 0; t < n; ++t) {
     for (int a = 0; a < 4; ++a) {

@@ -26,6 +26,10 @@
 namespace asperity::run {
 namespace {
 
+// The contact's largest share of the step in a scene that leaves the penalty to the solver
+// (contact.max_contact_factor; issue 11, item 5: never more than 2× below the element limit).
+constexpr double kDefaultContactFactor = 2;
+
 TetMesh mesh_body(const scene::MeshShape& m, const std::string& key) {
 #if ASPERITY_HAVE_GEOMETRY
   geometry::PipelineOptions o;
@@ -161,9 +165,26 @@ Built build(const scene::SceneDef& s) {
                                                                : fdem::ContactLaw::potential);
   out.def.contact.kv = s.contact.kv.value_or(0.0);
   if (s.contact.penalty_alpha) out.def.contact.alpha = *s.contact.penalty_alpha;
-  // The default penalty stays α = 10 even where it sets the step: lowering it until the contact
-  // costs at most 2× (fdem::limit_penalty, issue 11) costs up to 24 % of the peak force
-  // (docs/physics.md, "Time step"), too much to trade silently for speed.
+  // The contact's share of the step (issue 11, item 5; docs/physics.md, "Time step"): a scene that
+  // gives no penalty, penalty_alpha or max_contact_factor gets max_contact_factor 2 met by
+  // face-penalty (the penalty lowered only on the faces whose nodes set the step: 0.0 % of the
+  // peak force on 8 of 10 bench_fem particles, −2.2 % at worst, against −4 % to −15 % for one
+  // lowered penalty, reports/fem/mesh_step.md). A given penalty or α is used as given unless
+  // max_contact_factor is given too.
+  const bool penalty_given = s.contact.penalty || s.contact.penalty_alpha;
+  out.def.contact.max_contact_factor =
+      s.contact.max_contact_factor.value_or(penalty_given ? 0.0 : kDefaultContactFactor);
+  switch (s.contact.contact_factor_by) {
+    case scene::ContactFactorBy::face_penalty:
+      out.def.contact.contact_step_fix = fdem::ContactStepFix::face_penalty;
+      break;
+    case scene::ContactFactorBy::penalty:
+      out.def.contact.contact_step_fix = fdem::ContactStepFix::penalty;
+      break;
+    case scene::ContactFactorBy::mass:
+      out.def.contact.contact_step_fix = fdem::ContactStepFix::mass;
+      break;
+  }
   // Coulomb μ: the scene's, else the smallest of the bodies' materials (as pair_friction does
   // for a pair).
   out.def.contact.friction = s.contact.friction.value_or(friction);
@@ -349,6 +370,18 @@ RunResult run_fdem(const scene::SceneDef& s, const RunOptions& options) {
     const double used = built.def.contact.alpha * w.penalty / w.penalty_asked;
     j["penalty_alpha"] = s.contact.penalty ? J() : J(used);
     j["penalty_alpha_asked"] = s.contact.penalty ? J() : J(built.def.contact.alpha);
+    // What met max_contact_factor: the least face penalty scale (face-penalty) and the mass
+    // added to the surface nodes over the moving bodies' mass (mass).
+    j["max_contact_factor"] = built.def.contact.max_contact_factor;
+    double least = 1;
+    for (const double x : w.tet_penalty_scale) least = std::min(least, x);
+    j["penalty_scale_min"] = least;
+    double added = 0, moving = 0;
+    for (const double x : w.added_mass) added += x;
+    for (const fdem::Body& b : w.bodies) {
+      if (b.kind != fdem::BodyKind::fixed) moving += b.mass;
+    }
+    j["added_mass_fraction"] = moving > 0 ? added / moving : 0.0;
   } else if (w.law == fdem::ContactLaw::volume_linear) {
     j["kv"] = w.kv;
   }

@@ -27,7 +27,8 @@ inline constexpr std::string_view kRun[] = {
     "dt", "dt_critical_predicted", "dt_rayleigh", "dt_element", "dt_contact", "dt_limited_by",
     "dt_safety", "assumed_approach_speed",
     // the contact's parameters as used
-    "penalty", "penalty_alpha", "penalty_alpha_asked", "kv", "friction",
+    "penalty", "penalty_alpha", "penalty_alpha_asked", "max_contact_factor", "penalty_scale_min",
+    "added_mass_fraction", "kv", "friction",
     // the run's length and cost
     "steps", "simulated_time", "ended_by", "cpu_seconds", "wall_seconds", "neighbour_rebuilds",
     "contact_updates", "contact_evaluations", "contacts_touching", "surface_tets"};

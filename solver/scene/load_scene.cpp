@@ -131,6 +131,31 @@ ContactDef parse_contact(const JsonReader& c) {
     // α = p/E (docs/physics.md, "Penalty"); the study definition's range.
     out.penalty_alpha = c.in_range("penalty_alpha", 0, 1e6, true, false);
   }
+  if (c.has("max_contact_factor")) {
+    if (out.law != ContactLaw::potential) {
+      c.fail("max_contact_factor", "only the potential law takes max_contact_factor");
+    }
+    // 0: the penalty as asked wherever it sets the step; below 1 no step could meet it.
+    const double f = c.in_range("max_contact_factor", 0, 1e6, false, false);
+    if (f > 0 && f < 1) {
+      c.fail("max_contact_factor",
+             "must be 0 (no limit) or at least 1 (the contact cannot lengthen the elements' step)");
+    }
+    out.max_contact_factor = f;
+  }
+  if (c.has("contact_factor_by")) {
+    if (out.law != ContactLaw::potential) {
+      c.fail("contact_factor_by", "only the potential law takes contact_factor_by");
+    }
+    const std::string by = c.string("contact_factor_by");
+    bool known = false;
+    for (const auto& [value, name] : kContactFactorByNames) {
+      if (name == by) out.contact_factor_by = value, known = true;
+    }
+    if (!known) {
+      c.fail("contact_factor_by", "unknown \"" + by + "\"; expected face-penalty, penalty or mass");
+    }
+  }
   if (c.has("friction")) out.friction = c.in_range("friction", 0.0, 1e3, false, false);
   if (c.has("restitution")) out.restitution = c.in_range("restitution", 0.0, 1.0, true, false);
   return out;

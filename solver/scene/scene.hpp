@@ -86,6 +86,15 @@ inline std::optional<ContactLaw> contact_law_from_name(std::string_view name) {
   return std::nullopt;
 }
 
+// What meets contact.max_contact_factor (fdem::ContactStepFix): the penalty of the faces that
+// set the step, the one penalty of every face, or the mass of the surface nodes that set it.
+enum class ContactFactorBy { face_penalty, penalty, mass };
+inline constexpr std::array<std::pair<ContactFactorBy, std::string_view>, 3> kContactFactorByNames{{
+    {ContactFactorBy::face_penalty, "face-penalty"},
+    {ContactFactorBy::penalty, "penalty"},
+    {ContactFactorBy::mass, "mass"},
+}};
+
 struct ContactDef {
   ContactLaw law = ContactLaw::hertz_mindlin;
   std::optional<double> kn;             // linear: normal stiffness, N/m
@@ -93,9 +102,14 @@ struct ContactDef {
   std::optional<double> penalty;        // potential: penalty p, Pa (default α·E)
   std::optional<double> penalty_alpha;  // potential: α in p = α·E (E the largest moving body's
                                         // Young's modulus; default 10); exclusive with penalty
-  std::optional<double> kv;             // volume-linear: volumetric stiffness, N/m³
-  std::optional<double> friction;       // overrides the materials' pair friction
-  std::optional<double> restitution;    // overrides the materials' pair restitution
+  // potential: how far the penalty contact may pull a deformable body's predicted step below its
+  // elements' own limit (≥ 1; 0: no limit), and what gives way where it would pull further
+  // (fdem::ContactStepFix; docs/physics.md, "Time step").
+  std::optional<double> max_contact_factor;
+  ContactFactorBy contact_factor_by = ContactFactorBy::face_penalty;
+  std::optional<double> kv;           // volume-linear: volumetric stiffness, N/m³
+  std::optional<double> friction;     // overrides the materials' pair friction
+  std::optional<double> restitution;  // overrides the materials' pair restitution
 };
 
 struct RecordDef {

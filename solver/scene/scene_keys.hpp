@@ -37,8 +37,16 @@ inline constexpr std::string_view kMesh[] = {"type",
                                              "element_size_focus_radius",
                                              "element_size_growth",
                                              "element_size_far"};
-inline constexpr std::string_view kContact[] = {"law",           "kn", "kt",       "penalty",
-                                                "penalty_alpha", "kv", "friction", "restitution"};
+inline constexpr std::string_view kContact[] = {"law",
+                                                "kn",
+                                                "kt",
+                                                "penalty",
+                                                "penalty_alpha",
+                                                "max_contact_factor",
+                                                "contact_factor_by",
+                                                "kv",
+                                                "friction",
+                                                "restitution"};
 inline constexpr std::string_view kRecord[] = {"force_on", "every", "end_after_separation"};
 inline constexpr std::string_view kOutput[] = {"vtk_every", "vtk_format"};
 

@@ -50,10 +50,25 @@ std::vector<MeshStep> mesh_steps(const StudyDef& def, std::size_t index,
       fdem::WorldDef w = particle_on_block(p.tets, at_default, fdem::BodyKind::deformable,
                                            p.props.equivalent_radius);
       const fdem::CriticalStep d = fdem::critical_step(fdem::make_world(w));
-      w.contact.max_contact_factor = 2;  // as a scene without penalty or penalty_alpha
+      // The contact factor 2 met by each of the three (fdem::ContactStepFix): face-penalty is a
+      // scene's default (contact.max_contact_factor, run/run_fdem.cpp).
+      w.contact.max_contact_factor = 2;
+      w.contact.contact_step_fix = fdem::ContactStepFix::penalty;
       const fdem::World limited = fdem::make_world(w);
       r.dt_limited = fdem::critical_step(limited).critical;
       r.alpha_limited = limited.penalty / def.material.young;
+      w.contact.contact_step_fix = fdem::ContactStepFix::face_penalty;
+      const fdem::World face = fdem::make_world(w);
+      r.dt_face = fdem::critical_step(face).critical;
+      r.face_scale_min = 1;
+      for (const double x : face.tet_penalty_scale)
+        r.face_scale_min = std::min(r.face_scale_min, x);
+      w.contact.contact_step_fix = fdem::ContactStepFix::mass;
+      const fdem::World mass = fdem::make_world(w);
+      r.dt_mass = fdem::critical_step(mass).critical;
+      double added = 0;
+      for (const double x : mass.added_mass) added += x;
+      r.mass_added = added / mass.bodies[0].mass;
       r.dt_element = d.element;
       r.dt_contact = d.contact;
       r.dt_critical = d.critical;

@@ -28,9 +28,12 @@ struct MeshStep {
   double dt_contact = 0;   // s, penalty contact alone, default α = 10
   double dt_critical = 0;  // s, both together (the step a run scales), α = 10
   std::string limited_by;  // "element" or "contact", α = 10
-  // A scene's default since issue 11: α = 10 lowered until the contact costs at most a factor 2
-  // (fdem::limit_penalty): the step and the α it leaves.
+  // α = 10 lowered until the contact costs at most a factor 2 (fdem::limit_penalty): the step
+  // and the α it leaves.
   double dt_limited = 0, alpha_limited = 0;
+  // The same factor met by face-penalty (a scene's default) and by contact mass scaling: the
+  // step, the least penalty factor of any contact tetrahedron, the mass added / the body's.
+  double dt_face = 0, face_scale_min = 1, dt_mass = 0, mass_added = 0;
   double dt_critical_study = 0;  // s, both together at the study's α (= 10 when unset)
   double seconds = 0;            // CPU of meshing and the step prediction
   std::string error;             // non-empty: the mesher (or the world) failed; nothing above
@@ -41,6 +44,9 @@ struct MeshStep {
   // α = 10 and at the scene default.
   double contact_factor() const { return dt_element / dt_critical; }
   double limited_factor() const { return dt_element / dt_limited; }
+  double face_factor() const { return dt_element / dt_face; }
+  double mass_factor() const { return dt_element / dt_mass; }
+  double face_ratio() const { return dt_face * c / h; }
 };
 
 // Meshes particle `index` of `def` at each of `faces` and predicts each mesh's step. A mesher

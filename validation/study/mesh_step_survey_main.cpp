@@ -46,13 +46,14 @@ std::string spread_cells(const std::vector<double>& v) {
 std::string table(const std::vector<MeshStep>& rows, const std::vector<long>& resolutions) {
   std::ostringstream md;
   md << "| N faces | meshes | failed | dt_element·c/h min | median | max | α = 10: dt·c/h min | "
-        "median | max | contact factor min | median | max | default (limited): dt·c/h min | median "
-        "| max | α left min | median | max |\n"
+        "median | max | contact factor min | median | max | face-penalty (default): dt·c/h min | "
+        "median | max | contact factor max | least penalty factor min | median | one penalty: "
+        "contact factor max | α left min | median | contact mass: contact factor max | Δm/m "
+        "median | max |\n"
      << "| ---: | ---: | ---: | ---: | ---: | ---: | ---: | ---: | ---: | ---: | ---: | ---: | "
-        "---: "
-        "| ---: | ---: | ---: | ---: | ---: |\n";
+        "---: | ---: | ---: | ---: | ---: | ---: | ---: | ---: | ---: | ---: | ---: | ---: |\n";
   auto line = [&](const std::string& label, long n) {
-    std::vector<double> e, c, k, l, a;
+    std::vector<double> e, c, k, l, a, fr, ff, fs, lf, mf, ma;
     int failed = 0;
     for (const MeshStep& r : rows) {
       if (n > 0 && r.faces != n) continue;
@@ -65,10 +66,20 @@ std::string table(const std::vector<MeshStep>& rows, const std::vector<long>& re
       k.push_back(r.contact_factor());
       l.push_back(r.limited_ratio());
       a.push_back(r.alpha_limited);
+      fr.push_back(r.face_ratio());
+      ff.push_back(r.face_factor());
+      fs.push_back(r.face_scale_min);
+      lf.push_back(r.limited_factor());
+      mf.push_back(r.mass_factor());
+      ma.push_back(r.mass_added);
     }
+    const Spread sfs = spread(fs), sa = spread(a), sma = spread(ma);
     md << "| " << label << " | " << e.size() + static_cast<std::size_t>(failed) << " | " << failed
        << " | " << spread_cells(e) << " | " << spread_cells(c) << " | " << spread_cells(k) << " | "
-       << spread_cells(l) << " | " << spread_cells(a) << " |\n";
+       << spread_cells(fr) << " | " << num(spread(ff).max) << " | " << num(sfs.min) << " | "
+       << num(sfs.median) << " | " << num(spread(lf).max) << " | " << num(sa.min) << " | "
+       << num(sa.median) << " | " << num(spread(mf).max) << " | " << num(sma.median) << " | "
+       << num(sma.max) << " |\n";
   };
   for (const long n : resolutions) line(std::to_string(n), n);
   line("all", 0);
@@ -88,12 +99,15 @@ int run(int argc, char** argv) {
   csv << "particle,faces,tets,h,c,dt_element,dt_contact,dt_critical,limited_by,"
          "dt_limited,alpha_limited,dt_critical_study_alpha,element_ratio,critical_ratio,contact_"
          "factor,"
-         "limited_ratio,cpu_seconds,error\n";
+         "limited_ratio,dt_face,face_factor,face_scale_min,dt_mass,mass_factor,mass_added,"
+         "cpu_seconds,error\n";
   for (std::size_t i = 0; i < def.particles.size(); ++i) {
     for (const MeshStep& r : asperity::study::mesh_steps(def, i, def.resolutions)) {
       std::cerr << r.particle << " " << r.faces << ": dt c/h " << r.critical_ratio() << " (element "
                 << r.element_ratio() << ", contact factor " << r.contact_factor()
-                << ", limited: dt c/h " << r.limited_ratio() << " alpha " << r.alpha_limited << ")"
+                << ", limited: dt c/h " << r.limited_ratio() << " alpha " << r.alpha_limited
+                << ", face factor " << r.face_factor() << " scale " << r.face_scale_min
+                << ", mass factor " << r.mass_factor() << " added " << r.mass_added << ")"
                 << (r.error.empty() ? "" : " FAILED: " + r.error) << "\n";
       csv << r.particle << "," << r.faces << "," << r.tets << "," << num(r.h, "%.6g") << ","
           << num(r.c, "%.6g") << "," << num(r.dt_element, "%.6g") << ","
@@ -101,7 +115,10 @@ int run(int argc, char** argv) {
           << "," << num(r.dt_limited, "%.6g") << "," << num(r.alpha_limited, "%.4g") << ","
           << num(r.dt_critical_study, "%.6g") << "," << num(r.element_ratio(), "%.4g") << ","
           << num(r.critical_ratio(), "%.4g") << "," << num(r.contact_factor(), "%.4g") << ","
-          << num(r.limited_ratio(), "%.4g") << "," << num(r.seconds, "%.3g") << ",\"" << r.error
+          << num(r.limited_ratio(), "%.4g") << "," << num(r.dt_face, "%.6g") << ","
+          << num(r.face_factor(), "%.4g") << "," << num(r.face_scale_min, "%.4g") << ","
+          << num(r.dt_mass, "%.6g") << "," << num(r.mass_factor(), "%.4g") << ","
+          << num(r.mass_added, "%.4g") << "," << num(r.seconds, "%.3g") << ",\"" << r.error
           << "\"\n";
       rows.push_back(r);
     }
