@@ -125,5 +125,106 @@ TEST(CriticalStep, RigidFallsBackToEveryFace) {
   EXPECT_EQ(static_cast<int>(b.faces.size()), all);
 }
 
+// The three ways to meet max_contact_factor (fdem/time_step.hpp: limit_penalty,
+// limit_face_penalty, scale_contact_mass) on the coarse ball, whose contact alone pulls its step
+// well below the element limit. For each: the factor is met (to the regula falsi's round-off),
+// not overshot by more than the six Illinois steps leave (within 10 %, as limit_penalty's gate),
+// and the predicted step is still rigorous for the model it bounds: ≤ 2/ω_exact of the elements
+// plus the (scaled) face springs on the (scaled) lumped mass (exact_omega reads both).
+TEST(ContactStep, EachFixMeetsTheFactorAndStaysRigorous) {
+  WorldDef def = scenes::ball_on_block(0.1, 3, 1.0, BodyKind::deformable, scenes::rubbery(), 0.002);
+  const CriticalStep asked = critical_step(make_world(def));
+  const double factor = 1.5;
+  ASSERT_GT(asked.element / asked.critical, factor);  // the contact sets the step as asked
+  for (const ContactStepFix fix :
+       {ContactStepFix::penalty, ContactStepFix::face_penalty, ContactStepFix::mass}) {
+    def.contact.max_contact_factor = factor;
+    def.contact.contact_step_fix = fix;
+    const World w = make_world(def);
+    const CriticalStep c = critical_step(w);
+    const double met = asked.element / c.critical;
+    SCOPED_TRACE(static_cast<int>(fix));
+    std::printf("fix %d: contact factor %.4g -> %.4g, exact/predicted %.4g\n",
+                static_cast<int>(fix), asked.element / asked.critical, met,
+                2.0 / exact_omega(w, 0) / c.critical);
+    EXPECT_LE(met, factor * (1 + 1e-9));
+    EXPECT_GE(met, factor / 1.1);
+    EXPECT_LE(c.critical, 2.0 / exact_omega(w, 0) * (1 + 1e-12));
+  }
+}
+
+// Two equal coarse balls head-on at ±v (momentum zero), the contact factor met by each fix. The
+// contact forces are equal and opposite whatever their penalty and whatever the masses, so the
+// total momentum Σ m v (added mass included) stays zero to round-off (1e-12 of m v: a sum of
+// ~10⁴ steps' forces). The impulse on one ball, 2 m v for an elastic rebound that leaves no energy
+// in vibration, and at most that (energy: |v_out| ≤ v): face-penalty and one penalty change it by
+// at most 0.5 % of 2 m v (item 4's tolerance on impulse; the rebound is that of the same masses
+// through a softer layer), against the penalty as asked. Contact mass scaling adds Δm to the
+// ball: its impulse is that of a ball of mass m + Δm, so it is checked against 2 (m + Δm) v.
+TEST(ContactStep, ScalingKeepsMomentumExactAndTheImpulse) {
+  const Material m = scenes::rubbery();
+  const double v = 1.0, r = 0.1;
+  WorldDef def;
+  const TetMesh ball = scenes::translated(ball_mesh(r, 2), Vec3(0, 0, r + 0.001));
+  TetMesh lower = ball;
+  lower.nodes.row(2) *= -1;
+  lower.tets.row(1).swap(lower.tets.row(2));
+  lower.surface.row(1).swap(lower.surface.row(2));
+  def.bodies.push_back({.name = "upper",
+                        .kind = BodyKind::deformable,
+                        .mesh = ball,
+                        .material = m,
+                        .velocity = Vec3(0, 0, -v)});
+  def.bodies.push_back({.name = "lower",
+                        .kind = BodyKind::deformable,
+                        .mesh = lower,
+                        .material = m,
+                        .velocity = Vec3(0, 0, v)});
+  // The impulse on the upper ball over its first contact, and |Σ m v| / (m v) at the end.
+  auto impact = [&](const WorldDef& d, double& impulse, double& momentum_error, double& mass) {
+    World w = make_world(d);
+    const double dt = 0.5 * critical_step(w).critical;
+    mass = 0;
+    for (int i = w.bodies[0].node_begin; i < w.bodies[0].node_end; ++i) mass += w.mass[i];
+    impulse = 0;
+    bool touched = false;
+    while (w.time < 0.05) {
+      w.want_energy = false;
+      step(w, dt);
+      const double f = w.contacts.force(2, 0);
+      if (f != 0) {
+        touched = true;
+        impulse += f * dt;
+      } else if (touched) {
+        break;
+      }
+    }
+    momentum_error = momentum(w).norm() / (mass * v);
+    return touched;
+  };
+  double i0 = 0, p0 = 0, m0 = 0;
+  ASSERT_TRUE(impact(def, i0, p0, m0));
+  EXPECT_LT(p0, 1e-12);
+  EXPECT_LE(i0, 2 * m0 * v * (1 + 1e-9));
+  for (const ContactStepFix fix :
+       {ContactStepFix::penalty, ContactStepFix::face_penalty, ContactStepFix::mass}) {
+    SCOPED_TRACE(static_cast<int>(fix));
+    def.contact.max_contact_factor = 1.5;
+    def.contact.contact_step_fix = fix;
+    double i = 0, p = 0, mass = 0;
+    ASSERT_TRUE(impact(def, i, p, mass));
+    std::printf("fix %d: impulse %.6g (as asked %.6g, 2mv %.6g), mass +%.3g %%, momentum %.2g\n",
+                static_cast<int>(fix), i, i0, 2 * mass * v, 100 * (mass / m0 - 1), p);
+    EXPECT_LT(p, 1e-12);
+    EXPECT_LE(i, 2 * mass * v * (1 + 1e-9));
+    if (fix == ContactStepFix::mass) {
+      EXPECT_GT(mass, m0);  // it did act
+      EXPECT_NEAR(i / (2 * mass * v), i0 / (2 * m0 * v), 0.005);
+    } else {
+      EXPECT_NEAR(i, i0, 0.005 * 2 * m0 * v);
+    }
+  }
+}
+
 }  // namespace
 }  // namespace asperity::fdem
