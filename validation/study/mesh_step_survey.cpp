@@ -35,7 +35,7 @@ double p_wave_speed(const Material& m) {
 }  // namespace
 
 std::vector<MeshStep> mesh_steps(const StudyDef& def, std::size_t index,
-                                 const std::vector<long>& faces) {
+                                 const std::vector<long>& faces, bool all_fixes) {
   const SurfaceMesh source = particle_source(def, index);
   std::vector<MeshStep> out;
   for (const long n : faces) {
@@ -53,27 +53,33 @@ std::vector<MeshStep> mesh_steps(const StudyDef& def, std::size_t index,
       // The contact factor 2 met by each of the three (fdem::ContactStepFix): face-penalty is a
       // scene's default (contact.max_contact_factor, run/run_fdem.cpp).
       w.contact.max_contact_factor = 2;
-      w.contact.contact_step_fix = fdem::ContactStepFix::penalty;
-      const fdem::World limited = fdem::make_world(w);
-      r.dt_limited = fdem::critical_step(limited).critical;
-      r.alpha_limited = limited.penalty / def.material.young;
       w.contact.contact_step_fix = fdem::ContactStepFix::face_penalty;
       const fdem::World face = fdem::make_world(w);
       r.dt_face = fdem::critical_step(face).critical;
       r.face_scale_min = 1;
       for (const double x : face.tet_penalty_scale)
         r.face_scale_min = std::min(r.face_scale_min, x);
-      w.contact.contact_step_fix = fdem::ContactStepFix::mass;
-      const fdem::World mass = fdem::make_world(w);
-      r.dt_mass = fdem::critical_step(mass).critical;
-      double added = 0;
-      for (const double x : mass.added_mass) added += x;
-      r.mass_added = added / mass.bodies[0].mass;
+      // The other two cost about as much again each (a limit is ~9 evaluations of the element
+      // bound): only when asked (mesh_step_survey --all-fixes).
+      if (all_fixes) {
+        w.contact.contact_step_fix = fdem::ContactStepFix::penalty;
+        const fdem::World limited = fdem::make_world(w);
+        r.dt_limited = fdem::critical_step(limited).critical;
+        r.alpha_limited = limited.penalty / def.material.young;
+        w.contact.contact_step_fix = fdem::ContactStepFix::mass;
+        const fdem::World mass = fdem::make_world(w);
+        r.dt_mass = fdem::critical_step(mass).critical;
+        double added = 0;
+        for (const double x : mass.added_mass) added += x;
+        r.mass_added = added / mass.bodies[0].mass;
+      }
       r.dt_element = d.element;
       r.dt_contact = d.contact;
       r.dt_critical = d.critical;
       r.limited_by = d.limited_by;
-      r.dt_critical_study = def.penalty_alpha
+      // 0: not computed (without --all-fixes).
+      r.dt_critical_study = !all_fixes ? 0.0
+                            : def.penalty_alpha
                                 ? fdem::critical_step(fdem::make_world(particle_on_block(
                                                           p.tets, def, fdem::BodyKind::deformable,
                                                           p.props.equivalent_radius)))

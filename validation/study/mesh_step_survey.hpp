@@ -49,9 +49,11 @@ struct MeshStep {
   double face_ratio() const { return dt_face * c / h; }
 };
 
-// Meshes particle `index` of `def` at each of `faces` and predicts each mesh's step. A mesher
-// failure on one resolution is that row's `error`; the rest go on.
+// Meshes particle `index` of `def` at each of `faces` and predicts each mesh's step: elements,
+// α = 10, and the factor 2 met by face-penalty; with `all_fixes` also by one penalty and by
+// contact mass, and at the study's α. A mesher failure on one resolution is that row's `error`;
+// the rest go on.
 std::vector<MeshStep> mesh_steps(const StudyDef& def, std::size_t index,
-                                 const std::vector<long>& faces);
+                                 const std::vector<long>& faces, bool all_fixes = true);
 
 }  // namespace asperity::study

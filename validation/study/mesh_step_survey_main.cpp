@@ -87,9 +87,31 @@ std::string table(const std::vector<MeshStep>& rows, const std::vector<long>& re
 }
 
 int run(int argc, char** argv) {
-  if (argc != 4 || std::string(argv[2]) != "--out") {
-    std::cerr << "usage: mesh_step_survey STUDY.json --out DIR\n";
+  const std::string usage =
+      "usage: mesh_step_survey STUDY.json --out DIR [--all-fixes] [--particles FIRST:COUNT]\n";
+  if (argc < 4 || std::string(argv[2]) != "--out") {
+    std::cerr << usage;
     return 2;
+  }
+  bool all_fixes = false;
+  std::size_t first = 0, count = static_cast<std::size_t>(-1);
+  for (int i = 4; i < argc; ++i) {
+    const std::string a = argv[i];
+    if (a == "--all-fixes") {
+      all_fixes = true;
+    } else if (a == "--particles" && i + 1 < argc) {
+      const std::string v = argv[++i];
+      const std::size_t colon = v.find(':');
+      if (colon == std::string::npos) {
+        std::cerr << "mesh_step_survey: --particles: expected FIRST:COUNT, got " << v << "\n";
+        return 2;
+      }
+      first = std::stoul(v.substr(0, colon));
+      count = std::stoul(v.substr(colon + 1));
+    } else {
+      std::cerr << usage;
+      return 2;
+    }
   }
   const asperity::study::StudyDef def = asperity::study::load_study(argv[1]);
   const fs::path out = argv[3];
@@ -101,8 +123,8 @@ int run(int argc, char** argv) {
          "factor,"
          "limited_ratio,dt_face,face_factor,face_scale_min,dt_mass,mass_factor,mass_added,"
          "cpu_seconds,error\n";
-  for (std::size_t i = 0; i < def.particles.size(); ++i) {
-    for (const MeshStep& r : asperity::study::mesh_steps(def, i, def.resolutions)) {
+  for (std::size_t i = first; i < def.particles.size() && i - first < count; ++i) {
+    for (const MeshStep& r : asperity::study::mesh_steps(def, i, def.resolutions, all_fixes)) {
       std::cerr << r.particle << " " << r.faces << ": dt c/h " << r.critical_ratio() << " (element "
                 << r.element_ratio() << ", contact factor " << r.contact_factor()
                 << ", limited: dt c/h " << r.limited_ratio() << " alpha " << r.alpha_limited
