@@ -214,6 +214,25 @@ TEST(LoadScene, VolumeLawKeysAreChecked) {
             std::string::npos);
 }
 
+// The contact step's keys (issue 11, item 5): max_contact_factor is 0 or at least 1, its fix one
+// of three names, and both only with the potential law; each refusal names the key.
+TEST(LoadScene, ContactFactorKeysAreChecked) {
+  const std::string low =
+      error_of("factor-low", edit("{\"law\": \"hertz-mindlin\"}",
+                                  "{\"law\": \"potential\", \"max_contact_factor\": 0.5}"));
+  EXPECT_NE(low.find("contact.max_contact_factor: must be 0 (no limit) or at least 1"),
+            std::string::npos)
+      << low;
+  const std::string by =
+      error_of("factor-by", edit("{\"law\": \"hertz-mindlin\"}",
+                                 "{\"law\": \"potential\", \"contact_factor_by\": \"springs\"}"));
+  EXPECT_NE(by.find("contact.contact_factor_by: unknown \"springs\""), std::string::npos) << by;
+  const std::string law = error_of(
+      "factor-law",
+      edit("{\"law\": \"hertz-mindlin\"}", "{\"law\": \"hertz\", \"max_contact_factor\": 2}"));
+  EXPECT_NE(law.find("only the potential law takes max_contact_factor"), std::string::npos) << law;
+}
+
 // A mesh body's element_size (issue 11): not positive is refused where the scene is read; one
 // that would make more than ~20 M tetrahedra where the mesh is, naming the scene, the key, the
 // value and the estimate.
