@@ -68,9 +68,9 @@ struct ContactDef {
   double alpha = 10;
   double penalty = 0;   // Pa, overrides alpha when > 0
   double friction = 0;  // Coulomb μ
-  // > 0: the penalty α·E is lowered, where needed, until the penalty contact pulls no deformable
-  // body's predicted step more than this factor below its elements' own limit (limit_penalty,
-  // fdem/time_step.hpp; issue 11). Scenes that give neither penalty nor penalty_alpha get 2
+  // > 0: where the penalty contact would pull a deformable body's predicted step more than this
+  // factor below its elements' own limit, contact_step_fix gives way (fdem/time_step.hpp; issue
+  // 11). Scenes that give neither penalty nor penalty_alpha get 2 by face_penalty
   // (run/run_fdem.cpp); 0 (here the default): p as asked.
   double max_contact_factor = 0;
   ContactStepFix contact_step_fix = ContactStepFix::penalty;  // how (above)
