@@ -118,6 +118,18 @@ void run_collision(benchmark::State& state, const TetMesh& mesh) {
     state.counters["dt_element"] = step.element;
     state.counters["dt_contact"] = step.contact;
     state.counters["peak_N"] = im.peak_force;
+    // What a change of the kernels must leave alone (to round-off): the rebound, the energy
+    // drift and the final energies.
+    const EnergyBalance e = fdem::energy(w);
+    state.counters["v_after"] = im.v_after.z();
+    state.counters["drift"] = im.drift;
+    state.counters["E_kinetic"] = e.kinetic;
+    state.counters["E_elastic"] = e.elastic;
+    // Candidate pairs per step: whose boxes overlap (through the kernel), and touching.
+    const double steps = static_cast<double>(w.steps);
+    state.counters["pairs_kernel"] = static_cast<double>(w.contact_evaluations) / steps;
+    state.counters["pairs_touching"] = static_cast<double>(w.contacts_touching) / steps;
+    state.counters["pairs_listed"] = static_cast<double>(w.pairs.size());
     state.counters["cpu_s"] = cpu;
     // Shares of the profiled phase time (ticks, core/profile.hpp).
     const Profile& p = w.profile;
