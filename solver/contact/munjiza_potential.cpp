@@ -24,28 +24,8 @@ struct Polygon {
   Vertex v[kMaxVertices];
 };
 
-// Barycentric map of an element: L_{1..3} = B (x − x₀), L₀ = 1 − ΣL; gradients of L₀..L₃.
-struct BaryMap {
-  Vec3 origin;
-  Mat3 b;
-  Vec3 grad[4];
-  void coords(const Vec3& x, double* l) const {
-    const Vec3 r = b * (x - origin);
-    l[1] = r.x(), l[2] = r.y(), l[3] = r.z();
-    l[0] = 1.0 - r.x() - r.y() - r.z();
-  }
-};
-
-BaryMap bary_map(const TetNodes& t) {
-  BaryMap m;
-  m.origin = t[0];
-  Mat3 d;
-  d << t[1] - t[0], t[2] - t[0], t[3] - t[0];
-  m.b = d.inverse();
-  for (int k = 0; k < 3; ++k) m.grad[k + 1] = m.b.row(k).transpose();
-  m.grad[0] = -(m.grad[1] + m.grad[2] + m.grad[3]);
-  return m;
-}
+// Barycentric map of an element: L_{1..3} = B (x − x₀), L₀ = 1 − ΣL (TetFrame, the header).
+using BaryMap = TetFrame;
 
 // Sutherland–Hodgman: the part of `in` where s(v) ≥ 0, s linear along edges. Returns `in` itself
 // when every vertex is kept (the clip would copy it unchanged), else `out` holding the result
@@ -132,7 +112,7 @@ void inner_faces_energy(const TetNodes& t, const BaryMap& cm, const BaryMap& tm,
     const double phis[3] = {0, 0, 1};
     for (int k = 0; k < 3; ++k) {
       tri.v[k].x = pts[k];
-      cm.coords(pts[k], tri.v[k].l);
+      coords(cm, pts[k], tri.v[k].l);
       tri.v[k].aux[0] = phis[k];
       tri.v[k].aux[1] = tri.v[k].aux[2] = tri.v[k].aux[3] = 0;
     }
@@ -156,7 +136,7 @@ using NodeCoords = std::array<std::array<double, 4>, 4>;
 
 NodeCoords node_coords(const TetNodes& c, const BaryMap& tm) {
   NodeCoords l;
-  for (int k = 0; k < 4; ++k) tm.coords(c[k], l[k].data());
+  for (int k = 0; k < 4; ++k) coords(tm, c[k], l[k].data());
   return l;
 }
 
@@ -250,17 +230,31 @@ double one_way(const TetNodes& c, const BaryMap& cm, const NodeCoords& c_in_t, c
 
 }  // namespace
 
+TetFrame tet_frame(const TetNodes& t) {
+  TetFrame m;
+  m.origin = t[0];
+  Mat3 d;
+  d << t[1] - t[0], t[2] - t[0], t[3] - t[0];
+  m.b = d.inverse();
+  for (int k = 0; k < 3; ++k) m.grad[k + 1] = m.b.row(k).transpose();
+  m.grad[0] = -(m.grad[1] + m.grad[2] + m.grad[3]);
+  return m;
+}
+
 Eigen::Vector4d barycentric(const TetNodes& t, const Vec3& x) {
-  const BaryMap m = bary_map(t);
   Eigen::Vector4d l;
-  m.coords(x, l.data());
+  coords(tet_frame(t), x, l.data());
   return l;
 }
 
 PotentialPairForce munjiza_potential(const TetNodes& a, const TetNodes& b, double penalty,
                                      bool with_energy) {
+  return munjiza_potential(a, tet_frame(a), b, tet_frame(b), penalty, with_energy);
+}
+
+PotentialPairForce munjiza_potential(const TetNodes& a, const TetFrame& am, const TetNodes& b,
+                                     const TetFrame& bm, double penalty, bool with_energy) {
   PotentialPairForce out;
-  const BaryMap am = bary_map(a), bm = bary_map(b);
   // Each element's nodes in the other's coordinates: the separating-plane test, then the face
   // vertices of both passes (the same numbers the passes computed face by face before).
   const NodeCoords a_in_b = node_coords(a, bm);
