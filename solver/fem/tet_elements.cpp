@@ -87,7 +87,7 @@ constexpr int kBatch = 32;
 // forces to the nodes in element order. Each element's arithmetic and the order of the additions
 // into f and the energy are those of neo_hookean_tet_forces called element by element, so the
 // result is the same to the bit (tests/fem/test_neo_hookean_tet.cpp); only the schedule differs:
-// 2.x faster on one core (benchmarks/fem_bench.cpp, BM_InternalForces against
+// 1.4–1.6× faster on one core (benchmarks/fem_bench.cpp, BM_InternalForces against
 // BM_InternalForcesPerElement).
 template <bool kEnergy>
 InternalForceResult loop(const TetElements& e, const Eigen::Matrix3Xd& x, const Eigen::Matrix3Xd& v,
