@@ -6,6 +6,7 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <cstdio>
 
 #include "hertz_gate.hpp"
 
@@ -94,6 +95,36 @@ TEST(HertzSeries, LimitTendsToHertzAsTheContactShrinks) {
       p.c0, p.se0, p.c1, p.se1, d.c0, d.se0, d.c1, d.se1);
   EXPECT_LT(std::abs(p.c0), 0.02);
   EXPECT_LT(std::abs(d.c0), 0.02);
+}
+
+// Penalty independence at the converged level (issue 11, item 3): the finest level of the a/R =
+// 0.15 block sequence (s = 1, 72 586 tetrahedra) at α = 10 and α = 30. The penalty layer's own
+// compliance is about h/(4αa) of the approach (docs/physics.md, FEM/DEM point 3: 0.9 % at α = 10
+// with h = 5.6 mm, a = 15 mm, 0.3 % at α = 30), i.e. about 0.25 % of the peak (peak ∝ K^{2/5});
+// the issue asks the peak independent of α within 1 %. Measured (reports/fem/hertz_convergence.md):
+// filtered peak +5.94 / +6.01 %, duration −5.37 / −5.43 % from Hertz at α = 10 / 30 (0.07 and
+// 0.06 point apart). The raw peak is not α-independent (+6.79 / +8.53 %): the stiffer layer rings
+// harder, which is why the gates hold the T/20-filtered peak; it is printed, not gated. Cost: 63 +
+// 101 s of run CPU and 2 × 17 s of meshing (α = 30 takes 1.7× the steps: the step is
+// contact-limited).
+TEST(HertzPenalty, PeakAndDurationIndependentOfAlphaAtTheFinestLevel) {
+  const double speed = hertz::speed_for(0.15, scenes::rubbery());
+  const Level a10 = hertz::run_level(Setup::block, 1.0, speed, true, {.alpha = 10});
+  const Level a30 = hertz::run_level(Setup::block, 1.0, speed, true, {.alpha = 30});
+  for (const Level* l : {&a10, &a30}) {
+    EXPECT_TRUE(l->failure.empty()) << l->failure;
+    std::printf(
+        "alpha %2.0f: tets %ld  run %.1f s CPU  peak %+.4f (filtered %+.4f)  duration %+.4f  "
+        "impulse/2mv %.4f  (%ld steps, dt %.3g s)\n",
+        l == &a10 ? 10.0 : 30.0, l->tets, l->cpu, l->err_force, l->err_force_filtered,
+        l->err_duration, l->impulse_ratio, l->steps, l->dt);
+  }
+  EXPECT_EQ(a10.tets, a30.tets);  // the same mesh: only the penalty differs
+  EXPECT_NEAR(a30.peak_filtered / a10.peak_filtered, 1.0, 0.01);
+  EXPECT_NEAR(a30.duration / a10.duration, 1.0, 0.01);
+  // Both rebound elastically (vibration keeps 0.01–0.02 % of the impulse on these meshes).
+  EXPECT_NEAR(a10.impulse_ratio, 1.0, 0.005);
+  EXPECT_NEAR(a30.impulse_ratio, 1.0, 0.005);
 }
 
 // The same at a/R = 0.15 (block speed 0.465 m/s, the contact zone's elements and facets scaled
