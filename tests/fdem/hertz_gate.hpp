@@ -119,7 +119,7 @@ inline void expect_matches_finite_sphere(const Sequence& q, const char* what,
 // The 2 %, held level-wise: the finest level's own peak (T/20-filtered, and raw, which
 // carries the ringing) and duration within 2 % of the finite sphere. For a sequence whose
 // Richardson limit is not yet trustworthy (a/R = 0.15: the duration's observed order is below 1,
-// so its extrapolation multiplies the last step by 2.6; reports/fem/hertz_convergence.md), this is
+// so its extrapolation multiplies the last step by 2.7; reports/fem/hertz_convergence.md), this is
 // what can be asserted: the solver's finest answer against an independent reference. The limit is
 // printed beside it.
 inline void expect_finest_matches_finite_sphere(const Sequence& q, const char* what) {

@@ -49,14 +49,14 @@ TEST(HertzConvergence, WholeFieldRefinementConverges) {
 // by 1.40 with the contact radius: hertz_series.hpp). Label `slow`: 111 s of run CPU and 21 s of
 // meshing (132 s; one run each on the loaded machine, bench_hertz). Measured at s = 2, √2, 1
 // (reports/fem/hertz_convergence.md): T/20-filtered peak +7.49, +6.47, +5.94 % (raw +7.99, +7.11,
-// +6.79 %), duration −7.16, −6.12, −5.37 %; observed order 1.88 (filtered peak) and 0.94
+// +6.79 %), duration −7.16, −6.12, −5.37 %; observed order 1.92 (filtered peak) and 0.91
 // (duration); the finite sphere is +7.74 / −5.34 %, so the finest level is 1.80 points (filtered),
 // 0.95 (raw) and 0.03 (duration) from it.
 //
 // What is gated, and what is not: the sequence converges (errors falling at every level, order >
 // 0.75, impulse 2mv), and its finest level is within the 2 % of the finite sphere in
 // filtered peak, raw peak and duration. Not gated: the Richardson limit. The duration's order is
-// below 1 (its extrapolation multiplies the last step by 2.6 and puts the finest level 2.04 % from
+// below 1 (its extrapolation multiplies the last step by 2.7 and puts the finest level 2.04 % from
 // a limit of −3.43 %), and a fourth level says why: at s = 1/√2 (bench_hertz, 168 325
 // tetrahedra, 187 s of run CPU) the errors keep falling at order 0.5–0.7 (filtered peak +5.49 %,
 // raw +6.32 %, duration −4.77 %), past the finite sphere in duration and 2.25 points below it in
