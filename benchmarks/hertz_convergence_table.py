@@ -1,7 +1,8 @@
 #!/usr/bin/env python3
 """The Hertz convergence table (issue 11, item 2) from bench_hertz's JSON output
-(`bench_hertz --benchmark_filter=... --benchmark_out=RUN.json`; several files may be given, a
-later one's level replacing an earlier one's):
+(`bench_hertz --benchmark_filter=... --benchmark_out=RUN.json`, a gate's `ctest -V` log, or a CSV
+this script wrote before; several files may be given, a later one's level replacing an earlier
+one's):
 
 - per level (setup, grading, a/R, s): element size, tetrahedra, steps, run CPU, peak and duration
   errors against Hertz, impulse/2mv; written as CSV to --csv;
@@ -65,13 +66,27 @@ def gate_log(path):
         g = m.groups()
         ar = {"0.05": "0.050", "0.08": "0.080", "0.15": "0.150"}.get(f"{float(g[1]):.2f}",
                                                                         f"{float(g[1]):.3f}")
-        key = (g[0], "graded", ar, round(float(g[2]), 3))
+        key = (g[0].strip(), "graded", ar, round(float(g[2]), 3))
         out[key] = {"a_over_R": float(g[1]), "h_mm": float(g[3]), "tets": float(g[4]),
                     "nodes": float("nan"), "steps": float(g[11]), "dt": float(g[12]),
                     "dt_by_contact": float("nan"), "cpu_s": float(g[5]),
                     "mesh_cpu_s": float("nan"), "err_peak": float(g[6]),
                     "err_peak_filtered": float(g[7]), "err_duration": float(g[8]),
                     "impulse_ratio": float(g[9]), "momentum": float(g[10])}
+    return out
+
+
+def nominal(a):
+    """The a/R label of a level (as bench_hertz names it) from its measured a/R."""
+    return {"0.05": "0.050", "0.08": "0.080", "0.15": "0.150"}.get(f"{a:.2f}", f"{a:.3f}")
+
+
+def previous_csv(path):
+    """Levels from a table this script wrote before (--csv), so a new run adds to it."""
+    out = {}
+    for row in csv.DictReader(open(path)):
+        b = {k: float(v) for k, v in row.items() if k not in ("setup", "grading", "s")}
+        out[(row["setup"], row["grading"], nominal(b["a_over_R"]), round(float(row["s"]), 3))] = b
     return out
 
 
@@ -84,6 +99,9 @@ def main():
     args = ap.parse_args()
     levels = {}
     for path in args.runs:
+        if path.endswith(".csv"):
+            levels.update(previous_csv(path))
+            continue
         if not path.endswith(".json"):
             levels.update(gate_log(path))
             continue
@@ -91,7 +109,7 @@ def main():
             m = re.match(r"Hertz(Block|Pair)/([\w.]+)/aR:([\d.]+)/s:([\d.]+)", b["name"])
             if not m or b.get("error_occurred"):
                 continue
-            levels[(m.group(1).lower(), m.group(2), m.group(3), float(m.group(4)))] = b
+            levels[(m.group(1).lower(), m.group(2), m.group(3), round(float(m.group(4)), 3))] = b
     keys = sorted(levels, key=lambda k: (k[0], k[1], k[2], -k[3]))
     cols = ["setup", "grading", "a_over_R", "s", "h_mm", "tets", "nodes", "steps", "dt",
             "dt_by_contact", "cpu_s", "mesh_cpu_s", "err_peak", "err_peak_filtered", "err_duration",
@@ -125,22 +143,27 @@ def main():
     print("| --- | --- | ---: | --- | --- | --- | --- | --- | --- |")
     limits = {}
     for (setup, grading, a) in sorted({k[:3] for k in keys}):
-        # The finest three consecutive levels (s falling by sqrt2 each).
+        # Every three consecutive levels (s falling by sqrt2 each); the limit against a/R is the
+        # one of the gates' levels (the three ending at s = 1), or the finest three.
         scales = sorted((k[3] for k in keys if k[:3] == (setup, grading, a)), reverse=True)
         if len(scales) < 3:
             continue
-        seq = [levels[(setup, grading, a, s)] for s in scales[-3:]]
-        rp = richardson(*[b["err_peak"] for b in seq])
-        rd = richardson(*[b["err_duration"] for b in seq])
-        ar = seq[2]["a_over_R"]
-        filt = [b.get("err_peak_filtered", float("nan")) for b in seq]
-        rf = richardson(*filt) if all(f == f for f in filt) else None
-        filtered = f"{rf[0]:.2f}, {100 * rf[2]:+.2f} %" if rf else "–"
-        limits.setdefault((setup, grading), []).append((ar, rp[2], rd[2]))
-        print(f"| {setup} | {grading} | {ar:.3f} | {', '.join(f'{s:.3f}' for s in scales[-3:])} | "
-              f"{rp[0]:.2f}, {rd[0]:.2f} | "
-              f"{100 * rp[1]:+.2f} %, {100 * rd[1]:+.2f} % | "
-              f"{100 * rp[2]:+.2f} %, {100 * rd[2]:+.2f} % | {filtered} | {finite(ref, ar)} |")
+        gate = [i for i in range(len(scales) - 2) if scales[i + 2] == 1.0]
+        for i in range(len(scales) - 2):
+            triple = scales[i:i + 3]
+            seq = [levels[(setup, grading, a, s)] for s in triple]
+            rp = richardson(*[b["err_peak"] for b in seq])
+            rd = richardson(*[b["err_duration"] for b in seq])
+            ar = seq[2]["a_over_R"]
+            filt = [b.get("err_peak_filtered", float("nan")) for b in seq]
+            rf = richardson(*filt) if all(f == f for f in filt) else None
+            filtered = f"{rf[0]:.2f}, {100 * rf[2]:+.2f} %" if rf else "–"
+            if i == (gate[0] if gate else len(scales) - 3):
+                limits.setdefault((setup, grading), []).append((ar, rp[2], rd[2]))
+            print(f"| {setup} | {grading} | {ar:.3f} | {', '.join(f'{s:.3f}' for s in triple)} | "
+                  f"{rp[0]:.2f}, {rd[0]:.2f} | "
+                  f"{100 * rp[1]:+.2f} %, {100 * rd[1]:+.2f} % | "
+                  f"{100 * rp[2]:+.2f} %, {100 * rd[2]:+.2f} % | {filtered} | {finite(ref, ar)} |")
     print()
     for (setup, grading), pts in sorted(limits.items()):
         if len(pts) < 2:

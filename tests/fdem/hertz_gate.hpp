@@ -60,7 +60,11 @@ inline Sequence sequence(Setup setup, double speed, std::initializer_list<double
 // `filtered`: gate the peak after the T/20 moving average instead of the raw peak. The pair
 // needs it: its deformable–deformable contact rings (raw peak 3.2 points above the filtered one
 // at s = 1, and rising from s = √2 to 1 while the filtered peak and the duration fall).
-inline void expect_converges(const Sequence& q, const char* what, bool filtered = false) {
+// `own_error` false: the finest level's distance from the Richardson limit is printed, not gated
+// (a sequence whose observed order is below 1 and whose next level is known not to follow the
+// extrapolation: a/R = 0.15, test_hertz_convergence.cpp).
+inline void expect_converges(const Sequence& q, const char* what, bool filtered = false,
+                             bool own_error = true) {
   const std::vector<Level>& l = q.levels;
   const auto peak_error = [&](const Level& x) {
     return filtered ? x.err_force_filtered : x.err_force;
@@ -74,6 +78,7 @@ inline void expect_converges(const Sequence& q, const char* what, bool filtered 
   for (const Level& x : l) EXPECT_NEAR(x.impulse_ratio, 1.0, 0.005) << what << " s " << x.s;
   EXPECT_GT(peak.order, 0.75) << what;
   EXPECT_GT(q.duration.order, 0.75) << what;
+  if (!own_error) return;
   EXPECT_LT(std::abs(peak.finest_error), 0.02) << what;
   EXPECT_LT(std::abs(q.duration.finest_error), 0.02) << what;
 }
@@ -109,6 +114,25 @@ inline void expect_matches_finite_sphere(const Sequence& q, const char* what,
       what, peak, q.duration.limit, f.peak, f.duration);
   EXPECT_NEAR(peak, f.peak, 0.02) << what;
   EXPECT_NEAR(q.duration.limit, f.duration, 0.02) << what;
+}
+
+// The 2 %, held level-wise: the finest level's own peak (T/20-filtered, and raw, which
+// carries the ringing) and duration within 2 % of the finite sphere. For a sequence whose
+// Richardson limit is not yet trustworthy (a/R = 0.15: the duration's observed order is below 1,
+// so its extrapolation multiplies the last step by 2.7; reports/fem/hertz_convergence.md), this is
+// what can be asserted: the solver's finest answer against an independent reference. The limit is
+// printed beside it.
+inline void expect_finest_matches_finite_sphere(const Sequence& q, const char* what) {
+  const FiniteSphere f = finite_sphere(q);
+  const Level& l = q.levels.back();
+  std::printf(
+      "  %s: finest level − Hertz: peak %+.4f (filtered %+.4f), duration %+.4f; finite sphere "
+      "− Hertz %+.4f / %+.4f; limits (filtered peak, duration) %+.4f / %+.4f\n",
+      what, l.err_force, l.err_force_filtered, l.err_duration, f.peak, f.duration,
+      q.peak_filtered.limit, q.duration.limit);
+  EXPECT_NEAR(l.err_force_filtered, f.peak, 0.02) << what << ": filtered peak";
+  EXPECT_NEAR(l.err_force, f.peak, 0.02) << what << ": raw peak";
+  EXPECT_NEAR(l.err_duration, f.duration, 0.02) << what << ": duration";
 }
 
 // Least-squares line y = c0 + c1 x with the standard errors of both coefficients from the

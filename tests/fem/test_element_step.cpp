@@ -11,11 +11,14 @@
 #include "fdem/structured_mesh.hpp"
 #include "fem/neo_hookean_tet.hpp"
 #include "fem/tet_elements.hpp"
+#include "test_material.hpp"
 
 namespace asperity::fem {
 namespace {
 
-constexpr double kE = 1e9, kNu = 0.3, kRho = 2000;
+using test_material::kE;
+using test_material::kNu;
+using test_material::kRho;
 
 Eigen::Matrix<double, 12, 12> element_k(const TetElements& e, int t) {
   const TetReference r{.dm_inv = Eigen::Map<const Mat3>(&e.dm_inv[9 * t]), .volume = e.volume[t]};

@@ -8,11 +8,14 @@
 #include "fdem/structured_mesh.hpp"
 #include "fem/neo_hookean_tet.hpp"
 #include "fem/tet_elements.hpp"
+#include "test_material.hpp"
 
 namespace asperity::fem {
 namespace {
 
-constexpr double kE = 1e9, kNu = 0.3, kRho = 2000;
+using test_material::kE;
+using test_material::kNu;
+using test_material::kRho;
 
 // Σ internal forces of a mesh deformed by x = F X (+ c); the interior nodes must carry zero force.
 Eigen::Matrix3Xd forces_under(const TetMesh& m, const Mat3& F, const TetElements& e) {

@@ -6,11 +6,13 @@
 
 #include "fem/neo_hookean_tet.hpp"
 #include "fem/tet_stress.hpp"
+#include "test_material.hpp"
 
 namespace asperity::fem {
 namespace {
 
-constexpr double kE = 1e9, kNu = 0.3;
+using test_material::kE;
+using test_material::kNu;
 
 // A reference tetrahedron and its Dm⁻¹ (column-major, as TetElements stores it).
 struct Reference {
