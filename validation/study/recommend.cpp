@@ -126,9 +126,9 @@ OJson recommendation(const io::Json* best, const io::Json& g, OJson& notes) {
   }
   const io::Json& ref = g["reference"];
   notes.push_back(
-      "the tolerance is tighter than every guideline (the smallest is 2%): the study's "
-      "reference, and "
-      "a convergence check of your own");
+      "no guideline at or below this tolerance (it is tighter than 2%, or nothing the study "
+      "measured met it, its finest refined fem included): the study's finest fem, and a "
+      "convergence check of your own");
   return {{"model", ref["model"]},
           {"resolution", ref["resolution"]},
           {"element_size_rel", ref.value("element_size_rel", io::Json())},
