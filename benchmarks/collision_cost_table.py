@@ -22,7 +22,8 @@ def slope(points):
 
 def main(path, csv_path=None):
     runs = {}
-    units = {"": 1, "k": 1e3, "m": 1e-3, "u": 1e-6, "n": 1e-9}
+    units = {"": 1, "G": 1e9, "M": 1e6, "k": 1e3, "m": 1e-3, "u": 1e-6, "n": 1e-9, "p": 1e-12,
+             "f": 1e-15}
     for line in open(path):
         m = re.match(r"BM_CollisionSet/(\S+)/(\d+)/\S+\s.*?((?:\w+=\S+ ?)+)$", line.strip())
         if not m:

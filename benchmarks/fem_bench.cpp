@@ -39,6 +39,34 @@ void BM_InternalForces(benchmark::State& state) {
 }
 BENCHMARK(BM_InternalForces)->Arg(8)->Arg(16)->Arg(24);
 
+// The same forces element by element through the one-element kernel (fem/neo_hookean_tet.hpp):
+// the element loop as it was before the batched one (fem/tet_elements.cpp), whose result it
+// equals to the bit; kept as the before of that change, in the same process.
+void BM_InternalForcesPerElement(benchmark::State& state) {
+  const TetMesh m = fdem::ball_mesh(0.1, static_cast<int>(state.range(0)));
+  const fem::TetElements e = fem::make_tet_elements(m.nodes, m.tets, 1e9, 0.3, 2000, 0, "ball");
+  Eigen::Matrix3Xd x = m.nodes;
+  x.row(0) *= 1.01;
+  Eigen::Matrix3Xd f(3, x.cols());
+  for (auto _ : state) {
+    f.setZero();
+    double energy = 0;
+    for (int k = 0; k < e.size(); ++k) {
+      double* p[4];
+      for (int a = 0; a < 4; ++a) p[a] = f.data() + 3 * e.tets(a, k);
+      fem::neo_hookean_tet_forces<false>(
+          &e.dm_inv[9 * static_cast<std::size_t>(k)], e.volume[k], e.lame,
+          x.data() + 3 * e.tets(0, k), x.data() + 3 * e.tets(1, k), x.data() + 3 * e.tets(2, k),
+          x.data() + 3 * e.tets(3, k), p[0], p[1], p[2], p[3], &energy);
+    }
+    benchmark::DoNotOptimize(f.data());
+  }
+  state.counters["tets"] = e.size();
+  state.counters["tet_updates/s"] = benchmark::Counter(
+      static_cast<double>(e.size()), benchmark::Counter::kIsIterationInvariantRate);
+}
+BENCHMARK(BM_InternalForcesPerElement)->Arg(8)->Arg(16)->Arg(24);
+
 // One overlapping pair of tetrahedra through the Munjiza kernel (both passes: 32 face ×
 // sub-tetrahedron clips). Counter: pair evaluations per second.
 void BM_ContactKernel(benchmark::State& state) {
@@ -90,6 +118,18 @@ void run_collision(benchmark::State& state, const TetMesh& mesh) {
     state.counters["dt_element"] = step.element;
     state.counters["dt_contact"] = step.contact;
     state.counters["peak_N"] = im.peak_force;
+    // What a change of the kernels must leave alone (to round-off): the rebound, the energy
+    // drift and the final energies.
+    const EnergyBalance e = fdem::energy(w);
+    state.counters["v_after"] = im.v_after.z();
+    state.counters["drift"] = im.drift;
+    state.counters["E_kinetic"] = e.kinetic;
+    state.counters["E_elastic"] = e.elastic;
+    // Candidate pairs per step: whose boxes overlap (through the kernel), and touching.
+    const double steps = static_cast<double>(w.steps);
+    state.counters["pairs_kernel"] = static_cast<double>(w.contact_evaluations) / steps;
+    state.counters["pairs_touching"] = static_cast<double>(w.contacts_touching) / steps;
+    state.counters["pairs_listed"] = static_cast<double>(w.pairs.size());
     state.counters["cpu_s"] = cpu;
     // Shares of the profiled phase time (ticks, core/profile.hpp).
     const Profile& p = w.profile;

@@ -24,53 +24,45 @@ struct Polygon {
   Vertex v[kMaxVertices];
 };
 
-// Barycentric map of an element: L_{1..3} = B (x − x₀), L₀ = 1 − ΣL; gradients of L₀..L₃.
-struct BaryMap {
-  Vec3 origin;
-  Mat3 b;
-  Vec3 grad[4];
-  void coords(const Vec3& x, double* l) const {
-    const Vec3 r = b * (x - origin);
-    l[1] = r.x(), l[2] = r.y(), l[3] = r.z();
-    l[0] = 1.0 - r.x() - r.y() - r.z();
-  }
-};
+// Barycentric map of an element: L_{1..3} = B (x − x₀), L₀ = 1 − ΣL (TetFrame, the header).
+using BaryMap = TetFrame;
 
-BaryMap bary_map(const TetNodes& t) {
-  BaryMap m;
-  m.origin = t[0];
-  Mat3 d;
-  d << t[1] - t[0], t[2] - t[0], t[3] - t[0];
-  m.b = d.inverse();
-  for (int k = 0; k < 3; ++k) m.grad[k + 1] = m.b.row(k).transpose();
-  m.grad[0] = -(m.grad[1] + m.grad[2] + m.grad[3]);
-  return m;
-}
-
-// Sutherland–Hodgman: keeps the part of `in` where s(v) ≥ 0, s linear along edges.
+// Sutherland–Hodgman: the part of `in` where s(v) ≥ 0, s linear along edges. Returns `in` itself
+// when every vertex is kept (the clip would copy it unchanged), else `out` holding the result
+// (empty when fewer than 3 vertices remain); each s(v) is evaluated once.
 template <class S>
-void clip(const Polygon& in, Polygon& out, S s) {
-  out.n = 0;
-  if (in.n == 0) return;
-  const Vertex* p = &in.v[in.n - 1];
-  double sp = s(*p);
+const Polygon* clip(const Polygon& in, Polygon& out, S s) {
+  double sv[kMaxVertices];
+  bool all_in = true;
   for (int i = 0; i < in.n; ++i) {
-    const Vertex& q = in.v[i];
-    const double sq = s(q);
+    sv[i] = s(in.v[i]);
+    all_in = all_in && sv[i] >= 0;
+  }
+  if (all_in) return &in;
+  out.n = 0;
+  int p = in.n - 1;
+  for (int i = 0; i < in.n; ++i) {
+    const Vertex &vp = in.v[p], &q = in.v[i];
+    const double sp = sv[p], sq = sv[i];
     if ((sp >= 0) != (sq >= 0)) {
       const double t = sp / (sp - sq);
       Vertex& c = out.v[out.n++];
-      c.x = p->x + t * (q.x - p->x);
+      c.x = vp.x + t * (q.x - vp.x);
       for (int k = 0; k < 4; ++k) {
-        c.l[k] = p->l[k] + t * (q.l[k] - p->l[k]);
-        c.aux[k] = p->aux[k] + t * (q.aux[k] - p->aux[k]);
+        c.l[k] = vp.l[k] + t * (q.l[k] - vp.l[k]);
+        c.aux[k] = vp.aux[k] + t * (q.aux[k] - vp.aux[k]);
       }
     }
     if (sq >= 0) out.v[out.n++] = q;
-    p = &q;
-    sp = sq;
+    p = i;
   }
   if (out.n < 3) out.n = 0;
+  return &out;
+}
+
+// The scratch polygon of `a` and `b` that is not `busy`.
+Polygon* other_than(const Polygon* busy, Polygon& a, Polygon& b) {
+  return busy == &a ? &b : &a;
 }
 
 // Outward faces: the face opposite node m, ordered so that its normal points out of a
@@ -92,13 +84,14 @@ bool beyond_one_face(const Polygon& tri) {
   return outside;
 }
 
-// The part of `in` inside the element whose barycentrics it carries (L_m ≥ 0 for every m), into
-// `inside`; `tmp` is scratch.
-void clip_to_element(const Polygon& in, Polygon& tmp, Polygon& inside) {
-  clip(in, tmp, [](const Vertex& v) { return v.l[0]; });
-  clip(tmp, inside, [](const Vertex& v) { return v.l[1]; });
-  clip(inside, tmp, [](const Vertex& v) { return v.l[2]; });
-  clip(tmp, inside, [](const Vertex& v) { return v.l[3]; });
+// The part of `in` inside the element whose barycentrics it carries (L_m ≥ 0 for every m): `in`
+// itself or one of the scratch polygons `a`, `b`.
+const Polygon* clip_to_element(const Polygon& in, Polygon& a, Polygon& b) {
+  const Polygon* p = &in;
+  for (int m = 0; m < 4 && p->n > 0; ++m) {
+    p = clip(*p, *other_than(p, a, b), [m](const Vertex& v) { return v.l[m]; });
+  }
+  return p;
 }
 
 // The energy terms of t's internal faces (the centroid split) inside c: each face between
@@ -106,7 +99,7 @@ void clip_to_element(const Polygon& in, Polygon& tmp, Polygon& inside) {
 // barycentrics).
 void inner_faces_energy(const TetNodes& t, const BaryMap& cm, const BaryMap& tm,
                         double (&energy_sum)[4]) {
-  Polygon tri, inside, tmp;
+  Polygon tri, scratch_a, scratch_b;
   const Vec3 centroid = 0.25 * (t[0] + t[1] + t[2] + t[3]);
   for (const auto& e : kInner) {
     const int i = e[0], j = e[1], m = e[2], m2 = e[3];
@@ -119,12 +112,12 @@ void inner_faces_energy(const TetNodes& t, const BaryMap& cm, const BaryMap& tm,
     const double phis[3] = {0, 0, 1};
     for (int k = 0; k < 3; ++k) {
       tri.v[k].x = pts[k];
-      cm.coords(pts[k], tri.v[k].l);
+      coords(cm, pts[k], tri.v[k].l);
       tri.v[k].aux[0] = phis[k];
       tri.v[k].aux[1] = tri.v[k].aux[2] = tri.v[k].aux[3] = 0;
     }
     if (beyond_one_face(tri)) continue;
-    clip_to_element(tri, tmp, inside);  // inside c
+    const Polygon& inside = *clip_to_element(tri, scratch_a, scratch_b);  // inside c
     double i_phi2 = 0;
     for (int k = 1; k + 1 < inside.n; ++k) {
       const Vertex &v0 = inside.v[0], &v1 = inside.v[k], &v2 = inside.v[k + 1];
@@ -138,15 +131,35 @@ void inner_faces_energy(const TetNodes& t, const BaryMap& cm, const BaryMap& tm,
   }
 }
 
+// Barycentric coordinates in one element of the other's four nodes: [node][m].
+using NodeCoords = std::array<std::array<double, 4>, 4>;
+
+NodeCoords node_coords(const TetNodes& c, const BaryMap& tm) {
+  NodeCoords l;
+  for (int k = 0; k < 4; ++k) coords(tm, c[k], l[k].data());
+  return l;
+}
+
+// True when all four nodes of c lie beyond one face plane of t (L_m < 0 at each): a separating
+// plane, so the elements are disjoint and the pair adds nothing. Exact where the box test is
+// not: two boxes overlap long before the tetrahedra do (a thin sliver's box is mostly empty).
+bool separated(const NodeCoords& c_in_t) {
+  for (int m = 0; m < 4; ++m) {
+    if (c_in_t[0][m] < 0 && c_in_t[1][m] < 0 && c_in_t[2][m] < 0 && c_in_t[3][m] < 0) return true;
+  }
+  return false;
+}
+
 // One direction: the faces of contactor c are clipped against the sub-tetrahedra of target t;
 // forces to fc (on c's nodes) and ft (on t's nodes); returns U_t = p ∫_{c∩t} φ_t dV if asked.
-double one_way(const TetNodes& c, const BaryMap& cm, const TetNodes& t, const BaryMap& tm,
-               double penalty, bool with_energy, std::array<Vec3, 4>& fc, std::array<Vec3, 4>& ft,
-               double& depth, Vec3& phi_x, double& phi_w) {
+// `c_in_t`: the barycentric coordinates in t of c's four nodes.
+double one_way(const TetNodes& c, const BaryMap& cm, const NodeCoords& c_in_t, const TetNodes& t,
+               const BaryMap& tm, double penalty, bool with_energy, std::array<Vec3, 4>& fc,
+               std::array<Vec3, 4>& ft, double& depth, Vec3& phi_x, double& phi_w) {
   double energy_sum[4] = {0, 0, 0, 0};  // Σ ∮ φ² g_m·n dS per sub-tetrahedron m of t
   double gn[4];
   for (int m = 0; m < 4; ++m) gn[m] = tm.grad[m].norm();
-  Polygon tri, inside, tmp, sub;
+  Polygon tri, scratch_a, scratch_b, sub_a, sub_b;
   for (int f = 0; f < 4; ++f) {
     const int* fn = kFace[f];
     const Vec3 area_vec = 0.5 * (c[fn[1]] - c[fn[0]]).cross(c[fn[2]] - c[fn[0]]);
@@ -157,23 +170,20 @@ double one_way(const TetNodes& c, const BaryMap& cm, const TetNodes& t, const Ba
     for (int k = 0; k < 3; ++k) {
       Vertex& v = tri.v[k];
       v.x = c[fn[k]];
-      tm.coords(v.x, v.l);
+      for (int j = 0; j < 4; ++j) v.l[j] = c_in_t[fn[k]][j];
       v.aux[0] = k == 0, v.aux[1] = k == 1, v.aux[2] = k == 2, v.aux[3] = 0;
     }
-    if (beyond_one_face(tri)) continue;  // quick reject
-    clip_to_element(tri, tmp, inside);   // inside t
+    if (beyond_one_face(tri)) continue;                                   // quick reject
+    const Polygon& inside = *clip_to_element(tri, scratch_a, scratch_b);  // inside t
     if (inside.n == 0) continue;
     double phi_n[3] = {0, 0, 0}, phi_l[4] = {0, 0, 0, 0};
     for (int m = 0; m < 4; ++m) {
       // Sub-tetrahedron m: L_k − L_m ≥ 0 for k ≠ m.
       const Polygon* src = &inside;
-      Polygon* dst = &sub;
-      Polygon* spare = &tmp;
-      for (int k = 0; k < 4; ++k) {
+      for (int k = 0; k < 4 && src->n > 0; ++k) {
         if (k == m) continue;
-        clip(*src, *dst, [k, m](const Vertex& v) { return v.l[k] - v.l[m]; });
-        src = dst;
-        std::swap(dst, spare);
+        src = clip(*src, *other_than(src, sub_a, sub_b),
+                   [k, m](const Vertex& v) { return v.l[k] - v.l[m]; });
       }
       const Polygon& q = *src;
       if (q.n == 0) continue;
@@ -220,23 +230,43 @@ double one_way(const TetNodes& c, const BaryMap& cm, const TetNodes& t, const Ba
 
 }  // namespace
 
+TetFrame tet_frame(const TetNodes& t) {
+  TetFrame m;
+  m.origin = t[0];
+  Mat3 d;
+  d << t[1] - t[0], t[2] - t[0], t[3] - t[0];
+  m.b = d.inverse();
+  for (int k = 0; k < 3; ++k) m.grad[k + 1] = m.b.row(k).transpose();
+  m.grad[0] = -(m.grad[1] + m.grad[2] + m.grad[3]);
+  return m;
+}
+
 Eigen::Vector4d barycentric(const TetNodes& t, const Vec3& x) {
-  const BaryMap m = bary_map(t);
   Eigen::Vector4d l;
-  m.coords(x, l.data());
+  coords(tet_frame(t), x, l.data());
   return l;
 }
 
 PotentialPairForce munjiza_potential(const TetNodes& a, const TetNodes& b, double penalty,
                                      bool with_energy) {
+  return munjiza_potential(a, tet_frame(a), b, tet_frame(b), penalty, with_energy);
+}
+
+PotentialPairForce munjiza_potential(const TetNodes& a, const TetFrame& am, const TetNodes& b,
+                                     const TetFrame& bm, double penalty, bool with_energy) {
   PotentialPairForce out;
-  const BaryMap am = bary_map(a), bm = bary_map(b);
+  // Each element's nodes in the other's coordinates: the separating-plane test, then the face
+  // vertices of both passes (the same numbers the passes computed face by face before).
+  const NodeCoords a_in_b = node_coords(a, bm);
+  if (separated(a_in_b)) return out;
+  const NodeCoords b_in_a = node_coords(b, am);
+  if (separated(b_in_a)) return out;
   Vec3 phi_x = Vec3::Zero();
   double phi_w = 0;
-  out.energy =
-      one_way(a, am, b, bm, penalty, with_energy, out.on_a, out.on_b, out.depth, phi_x, phi_w);
-  out.energy +=
-      one_way(b, bm, a, am, penalty, with_energy, out.on_b, out.on_a, out.depth, phi_x, phi_w);
+  out.energy = one_way(a, am, a_in_b, b, bm, penalty, with_energy, out.on_a, out.on_b, out.depth,
+                       phi_x, phi_w);
+  out.energy += one_way(b, bm, b_in_a, a, am, penalty, with_energy, out.on_b, out.on_a, out.depth,
+                        phi_x, phi_w);
   if (phi_w > 0) {
     out.weight = phi_w;
     out.point = phi_x / phi_w;

@@ -58,9 +58,30 @@ struct PotentialPairForce {
   Vec3 total_on_a() const { return on_a[0] + on_a[1] + on_a[2] + on_a[3]; }
 };
 
+// What the kernel needs of each element besides its nodes: its barycentric map
+// L_{1..3} = B (x − x₀), L₀ = 1 − ΣL, and the gradients of L₀..L₃. A function of the element's
+// current nodes only, so a caller that meets one element in several pairs within a step (a
+// block's large tetrahedra meet hundreds) computes it once (fdem/fdem_world.cpp).
+struct TetFrame {
+  Vec3 origin;
+  Mat3 b;
+  Vec3 grad[4];
+};
+TetFrame tet_frame(const TetNodes& t);
+
+// L₀..L₃ of x into l.
+inline void coords(const TetFrame& m, const Vec3& x, double* l) {
+  const Vec3 r = m.b * (x - m.origin);
+  l[1] = r.x(), l[2] = r.y(), l[3] = r.z();
+  l[0] = 1.0 - r.x() - r.y() - r.z();
+}
+
 // penalty: p, Pa. Both elements must have positive volume.
 PotentialPairForce munjiza_potential(const TetNodes& a, const TetNodes& b, double penalty,
                                      bool with_energy);
+// The same with the elements' frames given (each tet_frame of its nodes): the same result.
+PotentialPairForce munjiza_potential(const TetNodes& a, const TetFrame& fa, const TetNodes& b,
+                                     const TetFrame& fb, double penalty, bool with_energy);
 
 // Barycentric coordinates (L₀..L₃) of x in a tetrahedron (extended linearly outside it).
 Eigen::Vector4d barycentric(const TetNodes& t, const Vec3& x);

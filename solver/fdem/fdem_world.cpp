@@ -103,20 +103,49 @@ bool boxes_overlap(const contact::TetNodes& a, const contact::TetNodes& b) {
   return !((alo.array() > bhi.array()).any() || (blo.array() > ahi.array()).any());
 }
 
+// Surface tetrahedron k's nodes and box in this contact pass (gathered at its first pair).
+const World::ContactTet& contact_tet_box(World& w, int k) {
+  World::ContactTet& t = w.contact_tets[static_cast<std::size_t>(k)];
+  if (t.box_pass != w.contact_passes) {
+    t.x = gather(w, k);
+    t.lo = t.hi = t.x[0];
+    for (int i = 1; i < 4; ++i) t.lo = t.lo.cwiseMin(t.x[i]), t.hi = t.hi.cwiseMax(t.x[i]);
+    t.box_pass = w.contact_passes;
+  }
+  return t;
+}
+
+// ... and its kernel frame (computed at its first pair whose boxes overlap).
+const contact::TetFrame& contact_tet_frame(World& w, int k) {
+  World::ContactTet& t = w.contact_tets[static_cast<std::size_t>(k)];
+  if (t.frame_pass != w.contact_passes) {
+    t.frame = contact::tet_frame(t.x);
+    t.frame_pass = w.contact_passes;
+  }
+  return t.frame;
+}
+
 // Contact forces of every candidate pair into w.f, with friction, energy and the per-body output.
+// Each surface tetrahedron's nodes, box and frame are computed once in the pass, at its first
+// pair (contact_tet_box, contact_tet_frame): the same numbers as pair by pair.
 void contact_forces(World& w, double dt) {
   w.contact_energy = 0;
   w.contacts.reset(static_cast<int>(w.bodies.size()));
   w.penetration = 0;
+  ++w.contact_passes;
+  if (w.contact_tets.size() != static_cast<std::size_t>(w.surface_tets.cols())) {
+    w.contact_tets.assign(static_cast<std::size_t>(w.surface_tets.cols()), {});
+  }
   for (TetPair& p : w.pairs) {
-    const contact::TetNodes a = gather(w, p.a), b = gather(w, p.b);
-    if (!boxes_overlap(a, b)) {
+    const World::ContactTet &ta = contact_tet_box(w, p.a), &tb = contact_tet_box(w, p.b);
+    if ((ta.lo.array() > tb.hi.array()).any() || (tb.lo.array() > ta.hi.array()).any()) {
       p.spring.setZero();
       continue;
     }
     ++w.contact_evaluations;
-    const contact::PotentialPairForce c =
-        contact::munjiza_potential(a, b, w.penalty, w.want_energy);
+    const contact::TetNodes &a = ta.x, &b = tb.x;
+    const contact::PotentialPairForce c = contact::munjiza_potential(
+        a, contact_tet_frame(w, p.a), b, contact_tet_frame(w, p.b), w.penalty, w.want_energy);
     if (!c.touching()) {
       p.spring.setZero();
       continue;

@@ -8,6 +8,7 @@
 
 #include <Eigen/Core>
 
+#include "contact/munjiza_potential.hpp"
 #include "contact/overlap_volume.hpp"
 #include "core/body_contacts.hpp"
 #include "core/energy.hpp"
@@ -167,6 +168,17 @@ struct World {
   std::vector<TetPair> pairs;
   Eigen::Matrix3Xd x_at_build;
   long rebuilds = 0;
+  // Narrow-phase scratch, per surface tetrahedron: its nodes, box and kernel frame as of contact
+  // pass `pass` (the potential law's contact_forces counts its passes in contact_passes), so that
+  // a tetrahedron met in several candidate pairs in one step is gathered and inverted once.
+  struct ContactTet {
+    contact::TetNodes x;
+    Vec3 lo, hi;
+    contact::TetFrame frame;
+    long box_pass = -1, frame_pass = -1;
+  };
+  std::vector<ContactTet> contact_tets;
+  long contact_passes = 0;
 
   // Bookkeeping.
   bool want_energy = true;       // compute elastic and contact energy in the next step

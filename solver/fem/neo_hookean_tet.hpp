@@ -48,6 +48,90 @@ inline TetReference tet_reference(const Vec3& x0, const Vec3& x1, const Vec3& x2
   return {.dm_inv = det > 0 ? Mat3(dm.inverse()) : Mat3::Zero(), .volume = det / 6};
 }
 
+// The kernel in two stages around the logarithm, shared by the one-element form below and the
+// batched element loop (fem/tet_elements.cpp), which runs each stage over a batch of elements in
+// structure of arrays so that the compiler vectorizes it; the same expressions in the same order
+// give the same bits either way. Component c of an element's 9 values sits at [c · S]: S = 1 for
+// one element, the batch size for a batch.
+//
+// Stage 1: F = Ds B and cof F (= J F⁻ᵀ), row-major (F[(3r + c) S] = F(r, c)), from Ds
+// (d[(3r + c) S] = row r of edge c, x_{c+1} − x₀) and B = Dm⁻¹ (column-major, b[(r + 3c) S]);
+// returns J = det F.
+template <int S>
+inline double tet_deformation(const double* d, const double* b, double* F, double* C) {
+  const double d00 = d[0], d01 = d[S], d02 = d[2 * S];
+  const double d10 = d[3 * S], d11 = d[4 * S], d12 = d[5 * S];
+  const double d20 = d[6 * S], d21 = d[7 * S], d22 = d[8 * S];
+  const double b0 = b[0], b1 = b[S], b2 = b[2 * S], b3 = b[3 * S], b4 = b[4 * S], b5 = b[5 * S],
+               b6 = b[6 * S], b7 = b[7 * S], b8 = b[8 * S];
+  const double F00 = d00 * b0 + d01 * b1 + d02 * b2;
+  const double F01 = d00 * b3 + d01 * b4 + d02 * b5;
+  const double F02 = d00 * b6 + d01 * b7 + d02 * b8;
+  const double F10 = d10 * b0 + d11 * b1 + d12 * b2;
+  const double F11 = d10 * b3 + d11 * b4 + d12 * b5;
+  const double F12 = d10 * b6 + d11 * b7 + d12 * b8;
+  const double F20 = d20 * b0 + d21 * b1 + d22 * b2;
+  const double F21 = d20 * b3 + d21 * b4 + d22 * b5;
+  const double F22 = d20 * b6 + d21 * b7 + d22 * b8;
+  const double C00 = F11 * F22 - F12 * F21, C01 = F12 * F20 - F10 * F22,
+               C02 = F10 * F21 - F11 * F20;
+  F[0] = F00, F[S] = F01, F[2 * S] = F02, F[3 * S] = F10, F[4 * S] = F11, F[5 * S] = F12;
+  F[6 * S] = F20, F[7 * S] = F21, F[8 * S] = F22;
+  C[0] = C00, C[S] = C01, C[2 * S] = C02;
+  C[3 * S] = F02 * F21 - F01 * F22, C[4 * S] = F00 * F22 - F02 * F20,
+        C[5 * S] = F01 * F20 - F00 * F21;
+  C[6 * S] = F01 * F12 - F02 * F11, C[7 * S] = F02 * F10 - F00 * F12,
+        C[8 * S] = F00 * F11 - F01 * F10;
+  return F00 * C00 + F01 * C01 + F02 * C02;
+}
+
+// Stage 2, for J > 0 and ln_j = ln J: H = −V₀ P Bᵀ with P = μ F + s cof F, s = (λ ln J − μ)/J,
+// into h[(3r + a) S] = H(r, a), the force on node a + 1 (node 0 takes minus the row sums).
+template <int S>
+inline void tet_nodal_forces(const double* b, double volume, Lame lame, double J, double ln_j,
+                             const double* F, const double* C, double* h) {
+  const double mu = lame.mu;
+  const double s = (lame.lambda * ln_j - mu) / J;
+  const double P00 = mu * F[0] + s * C[0], P01 = mu * F[S] + s * C[S],
+               P02 = mu * F[2 * S] + s * C[2 * S];
+  const double P10 = mu * F[3 * S] + s * C[3 * S], P11 = mu * F[4 * S] + s * C[4 * S],
+               P12 = mu * F[5 * S] + s * C[5 * S];
+  const double P20 = mu * F[6 * S] + s * C[6 * S], P21 = mu * F[7 * S] + s * C[7 * S],
+               P22 = mu * F[8 * S] + s * C[8 * S];
+  const double b0 = b[0], b1 = b[S], b2 = b[2 * S], b3 = b[3 * S], b4 = b[4 * S], b5 = b[5 * S],
+               b6 = b[6 * S], b7 = b[7 * S], b8 = b[8 * S];
+  const double v = -volume;
+  // Column a of H (node a+1): −V₀ P · (row a of B) = −V₀ Σ_c P(:, c) B(a, c).
+  h[0] = v * (P00 * b0 + P01 * b3 + P02 * b6);
+  h[3 * S] = v * (P10 * b0 + P11 * b3 + P12 * b6);
+  h[6 * S] = v * (P20 * b0 + P21 * b3 + P22 * b6);
+  h[S] = v * (P00 * b1 + P01 * b4 + P02 * b7);
+  h[4 * S] = v * (P10 * b1 + P11 * b4 + P12 * b7);
+  h[7 * S] = v * (P20 * b1 + P21 * b4 + P22 * b7);
+  h[2 * S] = v * (P00 * b2 + P01 * b5 + P02 * b8);
+  h[5 * S] = v * (P10 * b2 + P11 * b5 + P12 * b8);
+  h[8 * S] = v * (P20 * b2 + P21 * b5 + P22 * b8);
+}
+
+// V₀ Ψ, J, of an element with deformation gradient F (as stage 1 stores it) and ln J.
+template <int S>
+inline double tet_strain_energy(double volume, Lame lame, double ln_j, const double* F) {
+  const double trC = F[0] * F[0] + F[S] * F[S] + F[2 * S] * F[2 * S] + F[3 * S] * F[3 * S] +
+                     F[4 * S] * F[4 * S] + F[5 * S] * F[5 * S] + F[6 * S] * F[6 * S] +
+                     F[7 * S] * F[7 * S] + F[8 * S] * F[8 * S];
+  return volume * (0.5 * lame.mu * (trC - 3) - lame.mu * ln_j + 0.5 * lame.lambda * ln_j * ln_j);
+}
+
+// Adds an element's nodal forces h (as stage 2 stores them) to its four nodes.
+template <int S>
+inline void tet_scatter(const double* h, double* f0, double* f1, double* f2, double* f3) {
+  f1[0] += h[0], f1[1] += h[3 * S], f1[2] += h[6 * S];
+  f2[0] += h[S], f2[1] += h[4 * S], f2[2] += h[7 * S];
+  f3[0] += h[2 * S], f3[1] += h[5 * S], f3[2] += h[8 * S];
+  f0[0] -= h[0] + h[S] + h[2 * S], f0[1] -= h[3 * S] + h[4 * S] + h[5 * S],
+      f0[2] -= h[6 * S] + h[7 * S] + h[8 * S];
+}
+
 // Nodal internal forces of one element (added to f0..f3, N) from its current node positions;
 // returns J. For J ≤ 0 (an inverted element: the energy is undefined) nothing is added and the
 // caller reports the element. `energy` (J) gets V₀ Ψ when kEnergy.
@@ -56,57 +140,15 @@ inline double neo_hookean_tet_forces(const double* dm_inv, double volume, Lame l
                                      const double* x0, const double* x1, const double* x2,
                                      const double* x3, double* f0, double* f1, double* f2,
                                      double* f3, double* energy) {
-  // Ds columns.
-  const double d00 = x1[0] - x0[0], d10 = x1[1] - x0[1], d20 = x1[2] - x0[2];
-  const double d01 = x2[0] - x0[0], d11 = x2[1] - x0[1], d21 = x2[2] - x0[2];
-  const double d02 = x3[0] - x0[0], d12 = x3[1] - x0[1], d22 = x3[2] - x0[2];
-  const double* b = dm_inv;  // b[r + 3c] = B(r, c)
-  // F = Ds B.
-  const double F00 = d00 * b[0] + d01 * b[1] + d02 * b[2];
-  const double F01 = d00 * b[3] + d01 * b[4] + d02 * b[5];
-  const double F02 = d00 * b[6] + d01 * b[7] + d02 * b[8];
-  const double F10 = d10 * b[0] + d11 * b[1] + d12 * b[2];
-  const double F11 = d10 * b[3] + d11 * b[4] + d12 * b[5];
-  const double F12 = d10 * b[6] + d11 * b[7] + d12 * b[8];
-  const double F20 = d20 * b[0] + d21 * b[1] + d22 * b[2];
-  const double F21 = d20 * b[3] + d21 * b[4] + d22 * b[5];
-  const double F22 = d20 * b[6] + d21 * b[7] + d22 * b[8];
-  // cof F (= J F⁻ᵀ).
-  const double C00 = F11 * F22 - F12 * F21, C01 = F12 * F20 - F10 * F22,
-               C02 = F10 * F21 - F11 * F20;
-  const double C10 = F02 * F21 - F01 * F22, C11 = F00 * F22 - F02 * F20,
-               C12 = F01 * F20 - F00 * F21;
-  const double C20 = F01 * F12 - F02 * F11, C21 = F02 * F10 - F00 * F12,
-               C22 = F00 * F11 - F01 * F10;
-  const double J = F00 * C00 + F01 * C01 + F02 * C02;
+  const double d[9] = {x1[0] - x0[0], x2[0] - x0[0], x3[0] - x0[0], x1[1] - x0[1], x2[1] - x0[1],
+                       x3[1] - x0[1], x1[2] - x0[2], x2[2] - x0[2], x3[2] - x0[2]};
+  double F[9], C[9], h[9];
+  const double J = tet_deformation<1>(d, dm_inv, F, C);
   if (!(J > 0)) return J;
-  const double lnJ = std::log(J);
-  const double mu = lame.mu;
-  const double s = (lame.lambda * lnJ - mu) / J;
-  // H = −V₀ P Bᵀ, with P = μ F + s cof F.
-  const double P00 = mu * F00 + s * C00, P01 = mu * F01 + s * C01, P02 = mu * F02 + s * C02;
-  const double P10 = mu * F10 + s * C10, P11 = mu * F11 + s * C11, P12 = mu * F12 + s * C12;
-  const double P20 = mu * F20 + s * C20, P21 = mu * F21 + s * C21, P22 = mu * F22 + s * C22;
-  const double v = -volume;
-  // Column a of H (node a+1): −V₀ P · (row a of B) = −V₀ Σ_c P(:, c) B(a, c).
-  const double h00 = v * (P00 * b[0] + P01 * b[3] + P02 * b[6]);
-  const double h10 = v * (P10 * b[0] + P11 * b[3] + P12 * b[6]);
-  const double h20 = v * (P20 * b[0] + P21 * b[3] + P22 * b[6]);
-  const double h01 = v * (P00 * b[1] + P01 * b[4] + P02 * b[7]);
-  const double h11 = v * (P10 * b[1] + P11 * b[4] + P12 * b[7]);
-  const double h21 = v * (P20 * b[1] + P21 * b[4] + P22 * b[7]);
-  const double h02 = v * (P00 * b[2] + P01 * b[5] + P02 * b[8]);
-  const double h12 = v * (P10 * b[2] + P11 * b[5] + P12 * b[8]);
-  const double h22 = v * (P20 * b[2] + P21 * b[5] + P22 * b[8]);
-  f1[0] += h00, f1[1] += h10, f1[2] += h20;
-  f2[0] += h01, f2[1] += h11, f2[2] += h21;
-  f3[0] += h02, f3[1] += h12, f3[2] += h22;
-  f0[0] -= h00 + h01 + h02, f0[1] -= h10 + h11 + h12, f0[2] -= h20 + h21 + h22;
-  if constexpr (kEnergy) {
-    const double trC = F00 * F00 + F01 * F01 + F02 * F02 + F10 * F10 + F11 * F11 + F12 * F12 +
-                       F20 * F20 + F21 * F21 + F22 * F22;
-    *energy += volume * (0.5 * mu * (trC - 3) - mu * lnJ + 0.5 * lame.lambda * lnJ * lnJ);
-  }
+  const double ln_j = std::log(J);
+  tet_nodal_forces<1>(dm_inv, volume, lame, J, ln_j, F, C, h);
+  tet_scatter<1>(h, f0, f1, f2, f3);
+  if constexpr (kEnergy) *energy += tet_strain_energy<1>(volume, lame, ln_j, F);
   return J;
 }
 
