@@ -85,9 +85,10 @@ void add_study_command(CLI::App& app, Action& action) {
   auto* cmd = app.add_subcommand(
       "study",
       "Particle-geometry study: particles x resolutions x models (fem, rigid, rigid-penalty, "
-      "sphere) x placements, each striking a block, fem also at element sizes refined at the "
-      "strike point (the key \"refinement\"; the reference is the converged fem answer at the "
-      "finest resolution); resumable (finished cases are kept). Writes DIR/cases/, "
+      "sphere, sphere-local) x placements, each striking a rigid block, fem also at element "
+      "sizes refined at the strike point (the key \"refinement\"; the reference is the "
+      "Richardson limit of the fem sequence at the finest resolution, with its estimated error); "
+      "resumable (finished cases are kept). Writes DIR/cases/, "
       "DIR/cases.csv, DIR/classification.csv, DIR/guidelines.csv and DIR/study_summary.json. "
       "Under mpirun or srun the cases are spread over the ranks (docs/cluster.md)");
   cmd->add_option("study", args->study, "Study file (JSON, e.g. data/study/default.json)")

@@ -73,7 +73,10 @@ os.makedirs(work)
 with open(study_file) as f:
     n_cases = 0
     spec = json.load(f)
-    n_cases = spec["particles"]["count"] * len(spec["resolutions"]) * len(spec["models"]) * len(spec["placements"])
+    # the spheres ("sphere", "sphere-local") have no resolution: one case per particle and placement
+    meshed = [m for m in spec["models"] if m not in ("sphere", "sphere-local")]
+    n_cases = spec["particles"]["count"] * (len(spec["resolutions"]) * len(meshed) + len(spec["models"]) -
+                                            len(meshed)) * len(spec["placements"])
     # fem's refined element sizes (issue 12): a case per size, refined resolution and placement
     ref = spec.get("refinement", {})
     n_cases += spec["particles"]["count"] * len(ref.get("sizes", [])) * \

@@ -1,9 +1,11 @@
 // The study's table units on hand-made inputs: the published reference data read from
 // data/study/, its refusal of a broken file, and the per-particle classes.
+#include <cmath>
 #include <filesystem>
 #include <fstream>
 #include <sstream>
 #include <string>
+#include <vector>
 
 #include <gtest/gtest.h>
 
@@ -89,6 +91,72 @@ TEST(StudyCsv, FieldsAsSummaryJsonWritesThemAndQuoted) {
             {{0.1, 3, OJson(), "bad \"mesh\", at 2"}});
   EXPECT_EQ(read_text(dir / "t.csv"), "x,n,none,message\n0.1,3,,\"bad \"\"mesh\"\", at 2\"\n");
 }
+
+// The reference's Richardson extrapolation (tables/study_cases.hpp, docs/study.md "Guidelines").
+// Synthetic sequences v(h) = L + C h^p: the limit and the order are known exactly.
+namespace richardson_tests {
+
+std::vector<double> sequence(const std::vector<double>& h, double limit, double c, double p) {
+  std::vector<double> v;
+  for (double x : h) v.push_back(limit + c * std::pow(x, p));
+  return v;
+}
+
+TEST(Richardson, ThreeLevelsRecoverTheOrderAndTheLimit) {
+  // Three refined levels at h = 0.08, 0.04, 0.02 R (data/study/full.json): the observed order is
+  // exact for a pure power law, so the limit is exact to round-off (1e-12 relative: the
+  // bisection on the order runs to 2^-100 of its bracket).
+  const std::vector<double> h = {0.08, 0.04, 0.02};
+  for (double p : {1.0, 2.0, 2.5}) {
+    const Extrapolation e = richardson(h, sequence(h, 1000.0, 3000.0, p));
+    EXPECT_TRUE(e.observed) << p;
+    EXPECT_NEAR(e.order, p, 1e-9) << p;
+    EXPECT_NEAR(e.limit, 1000.0, 1e-9) << p;
+    // the error estimate: Roache's 1.25 times the last correction, relative to the limit
+    const double correction = 3000.0 * std::pow(0.02, p);
+    EXPECT_NEAR(e.error, 1.25 * correction / 1000.0, 1e-12) << p;
+  }
+  // Sizes that do not halve (0.1, 0.06, 0.03): the bisection solves the general ratio.
+  const std::vector<double> g = {0.1, 0.06, 0.03};
+  const Extrapolation e = richardson(g, sequence(g, 50.0, -400.0, 1.7));
+  EXPECT_TRUE(e.observed);
+  EXPECT_NEAR(e.order, 1.7, 1e-9);
+  EXPECT_NEAR(e.limit, 50.0, 1e-9);
+}
+
+TEST(Richardson, TwoLevelsBracketTheTrueLimitForAnyOrderInTheAssumedRange) {
+  // Two levels (the default study): the limit is the middle of the extrapolations at the
+  // assumed bracket's ends, the error half their spread; for a true order anywhere in the
+  // bracket the true limit lies within the estimate ± error (to round-off).
+  const std::vector<double> h = {0.08, 0.04};
+  for (double p : {kAssumedOrderLow, 1.5, 2.0, kAssumedOrderHigh}) {
+    const Extrapolation e = richardson(h, sequence(h, 1000.0, 5000.0, p));
+    EXPECT_FALSE(e.observed);
+    EXPECT_LE(std::abs(e.limit - 1000.0), e.error * std::abs(e.limit) * (1 + 1e-12)) << p;
+  }
+  // The numbers: r = 2, last change d = v2 − v1; the ends at d/(2^1.2 − 1) and d/(2^2.7 − 1)
+  // beyond v2, so the error is 0.294 |d| / limit.
+  const Extrapolation e = richardson(h, {110.0, 100.0});
+  const double lo = 100.0 - 10.0 / (std::pow(2.0, 1.2) - 1),
+               hi = 100.0 - 10.0 / (std::pow(2.0, 2.7) - 1);
+  EXPECT_DOUBLE_EQ(e.limit, 0.5 * (lo + hi));
+  EXPECT_DOUBLE_EQ(e.error, 0.5 * (hi - lo) / e.limit);
+  EXPECT_NEAR(e.error * e.limit / 10.0, 0.294, 0.001);
+}
+
+TEST(Richardson, NonMonotoneThreeLevelsFallBackToTheBracket) {
+  // Levels that overshoot (100, 90, 95) have no order: the two finest are extrapolated with the
+  // assumed bracket, as with two levels.
+  const Extrapolation three = richardson({0.08, 0.04, 0.02}, {100.0, 90.0, 95.0});
+  const Extrapolation two = richardson({0.04, 0.02}, {90.0, 95.0});
+  EXPECT_FALSE(three.observed);
+  EXPECT_DOUBLE_EQ(three.limit, two.limit);
+  EXPECT_DOUBLE_EQ(three.error, two.error);
+  // A missing level: no limit.
+  EXPECT_TRUE(std::isnan(richardson({0.08, 0.04}, {100.0, std::nan("")}).limit));
+}
+
+}  // namespace richardson_tests
 
 }  // namespace
 }  // namespace asperity::study::tables

@@ -28,7 +28,9 @@ import matplotlib.ticker  # noqa: E402
 
 TABLES = ["cases.csv", "classification.csv", "particle_classes.csv", "cpu_fit.csv", "candidates.csv",
           "guidelines.csv"]
-MODEL_COLOURS = {"fem": "tab:blue", "rigid": "tab:orange", "rigid-penalty": "tab:red", "sphere": "tab:green"}
+MODEL_COLOURS = {"fem": "tab:blue", "rigid": "tab:orange", "rigid-penalty": "tab:red", "sphere": "tab:green",
+                 "sphere-local": "tab:purple"}
+SPHERES = ("sphere", "sphere-local")
 METRICS = [("peak_force", "peak force"), ("impulse", "impulse"), ("contact_duration", "contact duration"),
            ("first_contact_time", "first-contact time")]
 
@@ -39,13 +41,15 @@ SCHEMA = {
     "cases.csv": (["particle", "model", "resolution", "element_size", "element_size_rel", "placement", "status",
                    "peak_force", "impulse", "contact_duration", "first_contact_time", "cpu_seconds",
                    "max_asperity_change_rel", "peak_force_err", "impulse_err", "answer", "converged",
-                   "discretization_error", "convergence_change", "peak_force_err_fem", "impulse_err_fem",
+                   "discretization_error", "convergence_change", "extrapolated_peak_force", "extrapolation_error",
+                   "extrapolation_order", "order_observed", "peak_force_err_fem", "impulse_err_fem",
                    "contact_duration_err_fem", "first_contact_shift_fem"],
-                  ["resolution", "element_size", "element_size_rel", "peak_force", "impulse", "contact_duration",
+                  ["extrapolated_peak_force", "extrapolation_error", "extrapolation_order", "resolution", "element_size", "element_size_rel", "peak_force", "impulse", "contact_duration",
                    "first_contact_time", "cpu_seconds", "max_asperity_change_rel", "peak_force_err", "impulse_err",
                    "discretization_error", "convergence_change", "peak_force_err_fem", "impulse_err_fem",
                    "contact_duration_err_fem", "first_contact_shift_fem"]),
-    "classification.csv": (["particle", "model", "placement", "resolution", "class"], ["resolution"]),
+    "classification.csv": (["particle", "model", "placement", "resolution", "lag_rel", "duration_ratio", "skewness_diff",
+                            "class"], ["resolution", "lag_rel", "duration_ratio", "skewness_diff"]),
     "particle_classes.csv": (["particle", "model", "placement", "classes", "coarsest_class"], []),
     "cpu_fit.csv": (["model", "placement", "exponent", "coefficient", "points"], ["exponent", "coefficient"]),
     "candidates.csv": (["placement", "model", "resolution", "element_size_rel", "particles", "peak_force_err_median",
@@ -228,8 +232,8 @@ def write_markdown_table(csv_path, md_path):
 
 def case_folder(c):
     """The case's folder name (study_run.hpp): MODEL-N-PLACEMENT, fem-N-hSIZE-PLACEMENT, sphere-PLACEMENT."""
-    if c["model"] == "sphere":
-        return f"sphere-{c['placement']}"
+    if c["model"] in SPHERES:
+        return f"{c['model']}-{c['placement']}"
     h = f"h{num(c['element_size_rel']):g}-" if c.get("element_size_rel") else ""
     return f"{c['model']}-{c['resolution']}-{h}{c['placement']}"
 
@@ -280,11 +284,11 @@ def force_overlays(study, out, cases, doc):
                     t, f = read_force(os.path.join(study, "cases", p, case_folder(c), "force.csv"))
                     ax.plot([1e3 * x for x in t], f, color=cmap(k / max(1, len(rows) - 1)), lw=1.0,
                             label=f"{c['resolution']}")
-                sph = [c for c in cases if c["particle"] == p and c["placement"] == pl and c["model"] == "sphere"
-                       and c["status"] == "ok"]
-                if sph:
-                    t, f = read_force(os.path.join(study, "cases", p, f"sphere-{pl}", "force.csv"))
-                    ax.plot([1e3 * x for x in t], f, "k--", lw=0.8, label="sphere")
+                for sm, style in (("sphere", "k--"), ("sphere-local", "k:")):
+                    if any(c["particle"] == p and c["placement"] == pl and c["model"] == sm and c["status"] == "ok"
+                           for c in cases):
+                        t, f = read_force(os.path.join(study, "cases", p, f"{sm}-{pl}", "force.csv"))
+                        ax.plot([1e3 * x for x in t], f, style, lw=0.8, label=sm)
                 ax.set_title(f"{m}, placed by {pl}", fontsize=9)
                 ax.tick_params(labelsize=7)
                 if i == len(placements) - 1:
@@ -305,6 +309,50 @@ def force_overlays(study, out, cases, doc):
             shutil.copyfile(picture, os.path.join(out, f"impact_{p}.png"))
             doc.image(f"impact_{p}.png", f"{p} at peak force, fem and rigid: surface von Mises stress and contact "
                       "pressure, rendered from the ParaView frames of a rerun of the study's case")
+
+
+CLASS_MEASURE = {"overlapping": lambda r: -abs(num(r["lag_rel"])), "shifted": lambda r: abs(num(r["lag_rel"])),
+                 "tail": lambda r: num(r["duration_ratio"]), "asymmetric": lambda r: abs(num(r["skewness_diff"]))}
+
+
+def class_examples(study, out, cases, classification, doc):
+    """One overlay per response class met: the example curve against the converged fem reference's (its finest
+    refined level). The example is a curve of that class alone when there is one, else one whose classes include it;
+    among those, the clearest: the largest lag (shifted), duration ratio (tail), skewness difference (asymmetric),
+    or the smallest lag (overlapping)."""
+    picks = []
+    for label, clearest in CLASS_MEASURE.items():
+        rows = [r for r in classification if label in r["class"].split("+")]
+        if not rows:
+            continue
+        pure = [r for r in rows if r["class"] == label]
+        picks.append((label, max(pure or rows, key=lambda r: clearest(r) if not math.isnan(clearest(r)) else -1e300)))
+    if not picks:
+        return
+    fig, axes = plt.subplots(1, len(picks), figsize=(3.6 * len(picks), 2.8), squeeze=False)
+    for ax, (label, r) in zip(axes[0], picks):
+        ref = reference_case(cases, r["particle"], r["placement"])
+        if ref:
+            t, f = read_force(os.path.join(study, "cases", r["particle"], case_folder(ref), "force.csv"))
+            ax.plot([1e3 * x for x in t], f, color="0.6", lw=2.4, label="fem reference")
+        c = {"model": r["model"], "resolution": r["resolution"], "placement": r["placement"], "element_size_rel": ""}
+        t, f = read_force(os.path.join(study, "cases", r["particle"], case_folder(c), "force.csv"))
+        ax.plot([1e3 * x for x in t], f, color=MODEL_COLOURS.get(r["model"], "k"), lw=1.0,
+                label=f"{r['model']} {r['resolution']}")
+        ax.set_title(f"{label}: {r['particle']}, {r['model']} {r['resolution']}\n(class {r['class']}; lag "
+                     f"{100 * num(r['lag_rel']):.1f} %, duration x{num(r['duration_ratio']):.2f})", fontsize=7)
+        ax.set_xlabel("t (ms)", fontsize=8)
+        ax.set_ylabel("|F| (N)", fontsize=8)
+        ax.tick_params(labelsize=7)
+        ax.legend(fontsize=6)
+    fig.tight_layout()
+    save_chart(fig, out, "class_examples.png", 80)
+    doc.image("class_examples.png", "One example of each response class met, against the converged fem reference "
+              "(its finest refined level): " + ", ".join(f"{label}: {r['particle']} {r['model']} {r['resolution']}"
+                                                          for label, r in picks))
+    missing = [label for label in CLASS_MEASURE if label not in {p[0] for p in picks}]
+    if missing:
+        doc.p("No curve of the class " + ", ".join(missing) + " in this study.")
 
 
 def cpu_chart(out, cases, fits, doc):
@@ -367,7 +415,7 @@ def accuracy_cost_chart(out, candidates, uncertainty, doc):
                 ax.scatter([cost], [err], color=colour, s=25, zorder=3, marker=marker)
                 if p90 > 0:
                     ax.scatter([cost], [p90], color=colour, s=12, marker="^", alpha=0.5)
-                label = c["resolution"] or "sphere"
+                label = c["resolution"] or c["model"]
                 if c["element_size_rel"]:
                     label += f" h{num(c['element_size_rel']):g}"
                 ax.annotate(label, (cost, err), fontsize=6, xytext=(3, 3), textcoords="offset points")
@@ -567,7 +615,7 @@ def answer_section(doc, guidelines, published):
 
     def entry(g):
         if not g:
-            return "nothing studied"
+            return "nothing within it (see below)"
         what = g["model"] + (f" {g['resolution']}" if g["resolution"] else "")
         if g["element_size_rel"]:
             what += f" h={num(g['element_size_rel']):g}R"
@@ -585,6 +633,14 @@ def answer_section(doc, guidelines, published):
                     for st in ("median", "p90")}
             rows.append([f"{pct(tol, 0)} on {title}", entry(pick["median"]), entry(pick["p90"])])
     doc.table(["to get", "median", "p90"], rows)
+    missing = [r[0] for r in rows if "nothing within it" in r[1] + r[2]]
+    if missing:
+        doc.p("Nothing within it: no model, resolution or element size studied, the finest refined fem level "
+              "included, comes within the tolerance of the reference (the Richardson limit of the fem sequence at "
+              "the finest resolution) for that share of the particles: " + "; ".join(missing) + ". The finest "
+              "level's own distance from the limit is in 'Geometry and discretization' below: where it exceeds the "
+              "tolerance the study's refinement sequence is too short to answer, and a finer element size (or the "
+              "full study's third level) is what would.")
 
 
 def axes_section(doc, cases):
@@ -596,9 +652,15 @@ def axes_section(doc, cases):
     doc.h(2, "Geometry and discretization")
     doc.p("For each resolution N and placement, over the particles that were refined: the discretization error "
           "(the coarse fem peak force, the surface triangles as the elements' faces as in the published study, "
-          "against the converged answer at the same N), the geometry effect (the converged answer at N against the "
-          "reference: the converged answer at the finest N), and how many sequences met the 1 % convergence "
-          "criterion. Medians of |value|; the published study's differences mixed the two.")
+          "against the limit of the refinement sequence at the same N), the finest refined level against that "
+          "limit, the limit's estimated error, the geometry effect (the limit at N against the reference: the limit "
+          "at the finest N), and how many sequences met the 1 % convergence criterion (the last refinement moved "
+          "the peak by less). Medians of |value|; the published study's differences mixed the two. The limit is a "
+          "Richardson extrapolation of the refined levels (docs/study.md, 'Guidelines'): at the order observed "
+          "from three refined levels when they change monotonically at an order in 0.5-5 (error: 1.25 times its "
+          "last correction, Roache's safety factor), else from the two finest at orders 1.2 and 2.7, the range "
+          "the Hertz gate measured on the same graded refinement (reports/fem/hertz_convergence.md): the limit "
+          "their mean, its error half their spread.")
 
     def median(v):
         v = sorted(v)
@@ -613,12 +675,30 @@ def axes_section(doc, cases):
                 continue
             coarse = [c for c in here if not c["element_size"]
                       and any(a["particle"] == c["particle"] for a in answers)]
+            finest_n = max((c["resolution"] for c in fem if c["placement"] == pl), key=num)
+            refs = {c["particle"]: num(c["extrapolated_peak_force"]) for c in fem
+                    if c["placement"] == pl and c["resolution"] == finest_n and c["answer"] == "true"}
+            geometry = [abs(num(a["extrapolated_peak_force"]) / refs[a["particle"]] - 1) for a in answers
+                        if a["particle"] in refs and a["extrapolated_peak_force"]]
+            orders = sorted({("observed " if a["order_observed"] == "true" else "assumed ") +
+                             f"{num(a['extrapolation_order']):.3g}" for a in answers if a["extrapolation_order"]})
             rows.append([pl, n, len(answers), sum(a["converged"] == "true" for a in answers),
                          pct(median([abs(num(c["discretization_error"])) for c in coarse])),
-                         pct(median([abs(num(a["peak_force_err_fem"])) for a in answers])),
+                         pct(median([abs(num(a["discretization_error"])) for a in answers])),
+                         pct(median([num(a["extrapolation_error"]) for a in answers if a["extrapolation_error"]])),
+                         ", ".join(orders) or "-",
+                         pct(median(geometry)) if geometry else "-",
                          pct(median([num(a["convergence_change"]) for a in answers]))])
-    doc.table(["placement", "N", "sequences", "converged (< 1 %)", "discretization error (coarse vs converged)",
-               "geometry effect (converged vs reference)", "last refinement change"], rows)
+    doc.table(["placement", "N", "sequences", "converged (< 1 %)", "discretization error (coarse vs limit)",
+               "finest level vs limit", "limit's estimated error", "order (peak)",
+               "geometry effect (limit vs reference)", "last refinement change"], rows)
+    per = [[a["particle"], a["placement"], a["resolution"], fmt(a["peak_force"]), fmt(a["extrapolated_peak_force"]),
+            pct(a["extrapolation_error"]), ("observed " if a["order_observed"] == "true" else "assumed ")
+            + fmt(a["extrapolation_order"], 3), pct(a["convergence_change"]), a["converged"]]
+           for a in fem if a["answer"] == "true" and a["extrapolated_peak_force"]]
+    doc.p("Per sequence (the peak force, N):")
+    doc.table(["particle", "placement", "N", "finest level", "limit", "limit's error", "order", "last change",
+               "converged (< 1 %)"], per)
 
 
 def main():
@@ -658,8 +738,9 @@ def main():
           f"{', '.join(summary['models'])} x placements {', '.join(summary['placements'])}: {summary['cases']} cases, "
           f"{summary['done']} done, {summary['failed']} failed. Each particle is launched straight down onto a fixed "
           "block under gravity. Errors are relative to the finest resolution of the same model (err) and to the "
-          "reference (err_fem): the converged fem answer at the finest resolution, same placement, where each fem "
-          "case at a resolution is refined at its strike point until the peak force settles (docs/study.md). "
+          "reference (err_fem): the limit of the fem refinement sequence (refined at the strike point, extrapolated "
+          "as above) at the finest resolution, same placement (docs/study.md). The sphere, rigid and sphere-local "
+          "models strike a rigid block, as the fem does. "
           "Tables: cases, classification, particle_classes, cpu_fit, candidates, guidelines, as CSV and as Markdown "
           "beside this file; every chart as PNG and SVG.")
 
@@ -727,6 +808,7 @@ def main():
     for c in classification:
         counts[c["class"]] = counts.get(c["class"], 0) + 1
     doc.p("Resolutions by class: " + ", ".join(f"{k} {v}" for k, v in sorted(counts.items())) + ".")
+    class_examples(a.study, a.out, cases, classification, doc)
 
     doc.h(2, "Force-time curves")
     force_overlays(a.study, a.out, cases, doc)

@@ -6,6 +6,7 @@
 #include <numbers>
 
 #include "core/error.hpp"
+#include "geometry/local_curvature.hpp"
 #include "geometry/mesh_pipeline.hpp"
 #include "io/json_file.hpp"
 #include "scene/scene.hpp"
@@ -55,18 +56,26 @@ int advised_body(const scene::SceneDef& s, const fs::path& scene_file) {
 struct Particle {
   double diameter = 0;  // volume-equivalent, m
   std::string shape;    // "sphere" or "mesh"
+  // Hertz's equivalent radius √(R1 R2) at the lowest vertex (the mesh file's −z; the strike point
+  // of a fall onto a floor), m; 0 where flat or concave (geometry/local_curvature.hpp).
+  double local_radius = 0;
 };
 
 Particle particle_of(const scene::BodyDef& b, int body, const fs::path& scene_file) {
   if (const auto* sp = std::get_if<scene::SphereShape>(&b.shape)) {
-    return {.diameter = 2 * sp->radius, .shape = "sphere"};
+    return {.diameter = 2 * sp->radius, .shape = "sphere", .local_radius = sp->radius};
   }
   if (const auto* m = std::get_if<scene::MeshShape>(&b.shape)) {
     geometry::PipelineOptions po;
     po.read.scale = m->scale;
     po.tetrahedralize = false;
-    return {.diameter = 2 * geometry::prepare_particle(m->file, po).source_props.equivalent_radius,
-            .shape = "mesh"};
+    const geometry::PreparedParticle p = geometry::prepare_particle(m->file, po);
+    // The same patch as the study's sphere-local model (study_meshes.hpp, local_radii).
+    const geometry::LocalCurvature k =
+        geometry::lowest_point_curvature(p.surface, 2.5 * geometry::mean_edge_length(p.surface));
+    return {.diameter = 2 * p.source_props.equivalent_radius,
+            .shape = "mesh",
+            .local_radius = k.equivalent_radius()};
   }
   throw InputError(scene_file.string() + ": bodies[" + std::to_string(body) +
                    "]: a free plane or box is no particle");
@@ -117,9 +126,9 @@ OJson recommendation(const io::Json* best, const io::Json& g, OJson& notes) {
   }
   const io::Json& ref = g["reference"];
   notes.push_back(
-      "the tolerance is tighter than every guideline (the smallest is 2%): the study's "
-      "reference, and "
-      "a convergence check of your own");
+      "no guideline at or below this tolerance (it is tighter than 2%, or nothing the study "
+      "measured met it, its finest refined fem included): the study's finest fem, and a "
+      "convergence check of your own");
   return {{"model", ref["model"]},
           {"resolution", ref["resolution"]},
           {"element_size_rel", ref.value("element_size_rel", io::Json())},
@@ -130,10 +139,19 @@ OJson recommendation(const io::Json* best, const io::Json& g, OJson& notes) {
 }
 
 // The scene keys to change for the recommended model.
-OJson scene_change(const OJson& rec, const io::Json& g, double diameter) {
+OJson scene_change(const OJson& rec, const io::Json& g, const Particle& particle) {
+  const double diameter = particle.diameter;
   const std::string model = rec["model"].get<std::string>();
   if (model == "sphere") {
     return {{"shape", {{"type", "sphere"}, {"radius", diameter / 2}}}, {"contact.law", "hertz"}};
+  }
+  if (model == "sphere-local") {
+    // Hertz at the local radius, carrying the particle's mass: its density times the volume
+    // ratio (the equivalent sphere's volume over the local sphere's).
+    const double r = particle.local_radius;
+    return {{"shape", {{"type", "sphere"}, {"radius", r > 0 ? OJson(r) : OJson()}}},
+            {"material.density_factor", r > 0 ? OJson(std::pow(diameter / (2 * r), 3)) : OJson()},
+            {"contact.law", "hertz"}};
   }
   // "rigid" is the rigid polyhedron under the elastic volume law; "rigid-penalty" under the
   // potential (the study's comparison model).
@@ -181,7 +199,7 @@ OJson recommend(const fs::path& scene_file, const fs::path& guidelines_file,
   OJson notes = OJson::array();
   const OJson rec = recommendation(best, g, notes);
   const std::string model = rec["model"].get<std::string>();
-  const OJson change = scene_change(rec, g, diameter);
+  const OJson change = scene_change(rec, g, particle);
   const io::Json range = g.value("particle_diameter_range", io::Json());
   const double study_speed = g.value("speed", 0.0);
   bool in_size = true, in_speed = true;
@@ -203,7 +221,12 @@ OJson recommend(const fs::path& scene_file, const fs::path& guidelines_file,
         "set shape.element_size_focus to the strike point (the mesh file's "
         "coordinates; the lowest point for a fall onto a floor)");
   }
-  if (particle.shape == "sphere" && model != "sphere") {
+  if (model == "sphere-local" && !(particle.local_radius > 0)) {
+    notes.push_back(
+        "the particle is flat or concave at its lowest vertex: no local sphere; take the next "
+        "guideline");
+  }
+  if (particle.shape == "sphere" && model != "sphere" && model != "sphere-local") {
     notes.push_back(
         "the scene's particle is a sphere: the guideline is for irregular particles; mesh the real "
         "shape");

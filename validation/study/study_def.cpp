@@ -26,6 +26,8 @@ const char* model_name(ModelKind m) {
       return "rigid-penalty";
     case ModelKind::sphere:
       return "sphere";
+    case ModelKind::sphere_local:
+      return "sphere-local";
   }
   return "?";
 }
@@ -180,9 +182,13 @@ StudyDef load_study(const fs::path& file) {
         s.models.push_back(ModelKind::rigid_penalty);
       else if (m == "sphere")
         s.models.push_back(ModelKind::sphere);
+      else if (m == "sphere-local")
+        s.models.push_back(ModelKind::sphere_local);
       else
-        list.at(i).fail("", "must be \"fem\", \"rigid\", \"rigid-penalty\" or \"sphere\" (got " +
-                                io::echo(v) + ")");
+        list.at(i).fail("",
+                        "must be \"fem\", \"rigid\", \"rigid-penalty\", \"sphere\" or "
+                        "\"sphere-local\" (got " +
+                            io::echo(v) + ")");
       if (std::count(s.models.begin(), s.models.end(), s.models.back()) > 1)
         list.at(i).fail("", "lists a model twice");
     }

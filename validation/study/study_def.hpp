@@ -32,8 +32,13 @@ const char* placement_name(Placement p);
 // elastic volume law (contact "volume-hertz", docs/physics.md) and, as a labelled comparison,
 // under Munjiza's penalty ("rigid-penalty", whose peak is a property of the penalty); the
 // volume-equivalent rigid sphere (same volume and mass, Hertz against the block).
-enum class ModelKind { fem, rigid, rigid_penalty, sphere };
+enum class ModelKind { fem, rigid, rigid_penalty, sphere, sphere_local };
 const char* model_name(ModelKind m);
+// The two Hertz spheres (no mesh, no resolution): "sphere", of the reference mesh's volume, and
+// "sphere-local", of the equivalent radius √(R1 R2) at its lowest vertex with its mass.
+inline bool is_sphere(ModelKind m) {
+  return m == ModelKind::sphere || m == ModelKind::sphere_local;
+}
 
 // The fem model's discretization axis (issue 12): beside the coarse default (the surface
 // triangles are the elements' faces, as in the published study), each (particle, resolution,

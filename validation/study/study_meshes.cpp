@@ -6,8 +6,10 @@
 
 #include "core/error.hpp"
 #include "fdem/structured_mesh.hpp"
+#include "geometry/local_curvature.hpp"
 #include "geometry/mass_properties.hpp"
 #include "geometry/random_particle.hpp"
+#include "geometry/read_mesh.hpp"
 #include "geometry/splitmix64.hpp"
 
 namespace asperity::study {
@@ -89,6 +91,22 @@ fdem::WorldDef particle_on_block(const TetMesh& tets, const StudyDef& def, fdem:
        .material = def.block_material});
   if (def.penalty_alpha) w.contact.alpha = *def.penalty_alpha;
   return w;
+}
+
+LocalRadii local_radii(const std::filesystem::path& file) {
+  const geometry::PolygonSoup soup = geometry::read_mesh_file(file);
+  SurfaceMesh s;
+  s.vertices = soup.points;
+  s.faces.resize(3, static_cast<Eigen::Index>(soup.polygons.size()));
+  for (std::size_t f = 0; f < soup.polygons.size(); ++f) {
+    for (int k = 0; k < 3; ++k) {
+      s.faces(k, static_cast<Eigen::Index>(f)) =
+          static_cast<int>(soup.polygons[f][static_cast<std::size_t>(k)]);
+    }
+  }
+  const geometry::LocalCurvature c =
+      geometry::lowest_point_curvature(s, 2.5 * geometry::mean_edge_length(s));
+  return {c.radius_min, c.radius_max, c.equivalent_radius()};
 }
 
 }  // namespace asperity::study

@@ -4,6 +4,7 @@
 #pragma once
 
 #include <cstddef>
+#include <filesystem>
 #include <string>
 
 #include "core/mesh.hpp"
@@ -28,5 +29,14 @@ geometry::PreparedParticle particle_mesh(const SurfaceMesh& source, const std::s
 // radius, m), moving down at def.speed, penalty α the study's (the solver's default when unset).
 fdem::WorldDef particle_on_block(const TetMesh& tets, const StudyDef& def, fdem::BodyKind kind,
                                  double radius);
+
+// The principal radii (m, r1 ≤ r2) of the surface in FILE (a study mesh's surface.off) at its
+// lowest vertex and Hertz's equivalent radius √(r1 r2) there (0: flat or concave), fitted over a
+// patch of 2.5 mean edges (about two rings of vertices: the fewest that hold the quadric's six
+// unknowns with room to spare; geometry/local_curvature.hpp) — the "sphere-local" model.
+struct LocalRadii {
+  double r1 = 0, r2 = 0, equivalent = 0;
+};
+LocalRadii local_radii(const std::filesystem::path& file);
 
 }  // namespace asperity::study

@@ -143,6 +143,7 @@ double case_weight(const CaseKey& c) {
     case ModelKind::rigid_penalty:
       return 0.5 * n;
     case ModelKind::sphere:
+    case ModelKind::sphere_local:
       return 0.01;
   }
   return 1;
@@ -163,8 +164,12 @@ struct ParticlePlan {
   std::map<long, Vec3> lowest_point;        // the strike point, surface.off's coordinates, m
   std::map<long, double> dt_fem, dt_rigid;  // estimated steps (for the rows kept), s
   double radius = 0, mass = 0;              // volume-equivalent sphere of the reference mesh
-  double duration = 0, contact_time = 0;    // s
-  std::string mesh_error;                   // non-empty: a resolution failed to mesh
+  // "sphere-local": Hertz's equivalent radius √(R1 R2) at the reference mesh's lowest vertex
+  // (geometry/local_curvature.hpp; 0 where the surface there is flat or concave), and its
+  // principal radii (m).
+  double local_radius = 0, local_r1 = 0, local_r2 = 0;
+  double duration = 0, contact_time = 0;  // s
+  std::string mesh_error;                 // non-empty: a resolution failed to mesh
 };
 
 // Height of the centroid of case c above the block top (z = 0), and the gap under its lowest
@@ -184,9 +189,29 @@ std::pair<double, double> start_height(const StudyDef& def, const ParticlePlan& 
                                                         : def.gap + pp.radius;
     return {z, z - pp.radius};
   }
+  if (c.model == ModelKind::sphere_local) {
+    // Its lowest point where the reference mesh's is: `gap` above the block ("lowest"), or as
+    // the reference mesh sits under the centroid placement.
+    const double low =
+        c.placement == Placement::centroid ? ref - pp.centroid_height.at(def.reference) : def.gap;
+    return {low + pp.local_radius, low};
+  }
   const double h = pp.centroid_height.at(c.resolution);
   const double z = c.placement == Placement::centroid ? ref : def.gap + h;
   return {z, z - h};
+}
+
+// The block every model strikes is rigid: the fem model's potential contact presses the particle
+// into a fixed block that does not deform (penalty α·E of the particle alone, fdem_world.cpp),
+// whereas the Hertz sphere and the volume-hertz polyhedron take E* from both materials, which
+// for a block of the particle's material halves E* (peak force 2^0.4 = 1.32 times lower, contact
+// 1.32 times longer than the fem's for the same geometry). Those models' block gets a Young's
+// modulus kRigidBlock times its own, so E* = E/(1 − ν²) of the particle to 1e-6 relative.
+constexpr double kRigidBlock = 1e6;
+OJson block_json(const StudyDef& def, ModelKind m) {
+  OJson j = material_json(def.block_material);
+  if (is_sphere(m) || m == ModelKind::rigid) j["young"] = kRigidBlock * def.block_material.young;
+  return j;
 }
 
 OJson case_scene(const StudyDef& def, const ParticlePlan& pp, const CaseKey& c) {
@@ -198,6 +223,10 @@ OJson case_scene(const StudyDef& def, const ParticlePlan& pp, const CaseKey& c) 
   long every = 1;
   if (c.model == ModelKind::sphere) {
     particle["shape"] = {{"type", "sphere"}, {"radius", pp.radius}};
+  } else if (c.model == ModelKind::sphere_local) {
+    // The particle's mass on a sphere of the local radius: its own material (below).
+    particle["shape"] = {{"type", "sphere"}, {"radius", pp.local_radius}};
+    particle["material"] = "particle-local";
   } else {
     const fs::path rel = fs::path("..") / ".." / ".." / "meshes" / c.particle /
                          std::to_string(c.resolution) / "surface.off";
@@ -226,7 +255,7 @@ OJson case_scene(const StudyDef& def, const ParticlePlan& pp, const CaseKey& c) 
       {"duration", pp.duration},
       {"dt", "auto"},
       {"materials",
-       {{"particle", material_json(def.material)}, {"block", material_json(def.block_material)}}},
+       {{"particle", material_json(def.material)}, {"block", block_json(def, c.model)}}},
       {"bodies",
        {particle,
         {{"name", "block"},
@@ -234,14 +263,19 @@ OJson case_scene(const StudyDef& def, const ParticlePlan& pp, const CaseKey& c) 
          {"shape",
           {{"type", "box"}, {"min", {-half, -half, -depth}}, {"max", {half, half, 0.0}}}}}}},
       {"contact",
-       {{"law", c.model == ModelKind::sphere  ? "hertz"
+       {{"law", is_sphere(c.model)            ? "hertz"
                 : c.model == ModelKind::rigid ? "volume-hertz"
                                               : "potential"}}},
       {"record", {{"force_on", "particle"}, {"every", every}}}};
   if (def.penalty_alpha && (c.model == ModelKind::fem || c.model == ModelKind::rigid_penalty)) {
     scene["contact"]["penalty_alpha"] = *def.penalty_alpha;
   }
-  if (def.end_after_separation && c.model != ModelKind::sphere) {
+  if (c.model == ModelKind::sphere_local) {
+    OJson local = material_json(def.material);
+    local["density"] = pp.mass / (4.0 / 3.0 * std::numbers::pi * std::pow(pp.local_radius, 3));
+    scene["materials"]["particle-local"] = local;
+  }
+  if (def.end_after_separation && !is_sphere(c.model)) {
     scene["record"]["end_after_separation"] = *def.end_after_separation * pp.contact_time;
   }
   return scene;
@@ -280,6 +314,8 @@ double estimated_dt(const TetMesh& tets, const StudyDef& def, fdem::BodyKind kin
 
 std::string CaseKey::dir_name() const {
   if (model == ModelKind::sphere) return std::string("sphere-") + placement_name(placement);
+  if (model == ModelKind::sphere_local)
+    return std::string("sphere-local-") + placement_name(placement);
   std::string level_part;
   if (level > 0) {
     char buf[32];
@@ -298,7 +334,7 @@ std::vector<CaseKey> plan_cases(const StudyDef& def) {
   std::vector<CaseKey> out;
   for (const ParticleSource& p : def.particles) {
     for (ModelKind m : def.models) {
-      if (m == ModelKind::sphere) {
+      if (is_sphere(m)) {
         for (Placement pl : def.placements) out.push_back({p.name, m, 0, pl});
         continue;
       }
@@ -490,8 +526,8 @@ Meshes mesh_particles(const StudyDef& def, const fs::path& out,
                       bool quiet, StudyOutcome& outcome) {
   Meshes m;
   // The sphere alone needs only the reference mesh (its volume).
-  const bool polyhedra = std::any_of(def.models.begin(), def.models.end(),
-                                     [](ModelKind k) { return k != ModelKind::sphere; });
+  const bool polyhedra =
+      std::any_of(def.models.begin(), def.models.end(), [](ModelKind k) { return !is_sphere(k); });
   for (std::size_t i : particles) {
     for (long n : def.resolutions) {
       if (polyhedra || n == def.reference) m.tasks.push_back({i, n});
@@ -544,6 +580,12 @@ std::map<std::string, ParticlePlan> plan_particles(const StudyDef& def, const fs
     if (t.faces == def.reference) {
       pp.radius = j.at("equivalent_radius").get<double>();
       pp.mass = def.material.density * j.at("volume").get<double>();
+      if (std::find(def.models.begin(), def.models.end(), ModelKind::sphere_local) !=
+          def.models.end()) {
+        const LocalRadii r =
+            local_radii(mesh_dir(out, def.particles[t.particle].name, t.faces) / "surface.off");
+        pp.local_radius = r.equivalent, pp.local_r1 = r.r1, pp.local_r2 = r.r2;
+      }
     }
   }
   for (auto& [name, pp] : plans) {
@@ -573,6 +615,11 @@ cluster::TaskReport run_case(const StudyDef& def, const fs::path& out, const Par
   try {
     fs::create_directories(dir);
     if (!pp.mesh_error.empty()) throw std::runtime_error("meshing failed at " + pp.mesh_error);
+    if (c.model == ModelKind::sphere_local && !(pp.local_radius > 0)) {
+      throw std::runtime_error(
+          "the reference mesh is flat or concave at its lowest vertex: no "
+          "local sphere");
+    }
     const std::string scene_text = case_scene(def, pp, c).dump(1) + "\n";
     if (fs::exists(dir / "case.json") && read_text(dir / "scene.json") == scene_text) {
       return {.skipped = true, .note = label + " (done before)"};
@@ -592,17 +639,20 @@ cluster::TaskReport run_case(const StudyDef& def, const fs::path& out, const Par
     // The element size at the strike point (m, null for the coarse default), as the scene set it.
     result.summary["element_size"] = c.level > 0 ? OJson(c.relative_size * pp.radius) : OJson();
     run::write_outputs(result, dir);
-    OJson record = {{"particle", c.particle},
-                    {"model", model_name(c.model)},
-                    {"resolution", c.model == ModelKind::sphere ? OJson() : OJson(c.resolution)},
-                    {"placement", placement_name(c.placement)},
-                    {"element_size", c.level > 0 ? OJson(c.relative_size * pp.radius) : OJson()},
-                    {"element_size_rel", c.level > 0 ? OJson(c.relative_size) : OJson()},
-                    {"status", result.status},
-                    {"start_gap", start_height(def, pp, c).second},
-                    {"duration", pp.duration},
-                    {"hertz_contact_time", pp.contact_time},
-                    {"cpu_seconds", cpu}};
+    OJson record = {
+        {"particle", c.particle},
+        {"model", model_name(c.model)},
+        {"resolution", is_sphere(c.model) ? OJson() : OJson(c.resolution)},
+        {"placement", placement_name(c.placement)},
+        {"element_size", c.level > 0 ? OJson(c.relative_size * pp.radius) : OJson()},
+        {"element_size_rel", c.level > 0 ? OJson(c.relative_size) : OJson()},
+        {"status", result.status},
+        {"start_gap", start_height(def, pp, c).second},
+        {"duration", pp.duration},
+        {"hertz_contact_time", pp.contact_time},
+        {"local_radii",
+         c.model == ModelKind::sphere_local ? OJson{pp.local_r1, pp.local_r2} : OJson()},
+        {"cpu_seconds", cpu}};
     io::write_atomically(dir / "case.json", record.dump(1) + "\n");
     char buf[64];
     std::snprintf(buf, sizeof buf, " %.2f s", cpu);

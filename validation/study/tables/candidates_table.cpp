@@ -14,8 +14,7 @@ std::vector<CandidateStats> candidate_stats(const StudyCases& s) {
   if (!s.has_fem_reference()) return out;
   for (Placement pl : def.placements) {
     for (ModelKind m : def.models) {
-      const std::vector<long> resolutions =
-          m == ModelKind::sphere ? std::vector<long>{0} : def.resolutions;
+      const std::vector<long> resolutions = is_sphere(m) ? std::vector<long>{0} : def.resolutions;
       for (long n : resolutions) {
         const int levels = m == ModelKind::fem && def.refinement.applies(n, pl)
                                ? static_cast<int>(def.refinement.sizes.size())

@@ -31,6 +31,10 @@ void write_cases_table(const StudyCases& s, const std::filesystem::path& dir) {
                                            "converged",
                                            "discretization_error",
                                            "convergence_change",
+                                           "extrapolated_peak_force",
+                                           "extrapolation_error",
+                                           "extrapolation_order",
+                                           "order_observed",
                                            "peak_force_err_fem",
                                            "impulse_err_fem",
                                            "contact_duration_err_fem",
@@ -42,16 +46,26 @@ void write_cases_table(const StudyCases& s, const std::filesystem::path& dir) {
     const CaseData& c = s.cases[i];
     const CaseKey& k = c.key;
     // The same model (and element size) at the reference resolution (the sphere has none).
-    const CaseData* same = k.model == ModelKind::sphere
+    const CaseData* same = is_sphere(k.model)
                                ? nullptr
                                : s.find(k.particle, k.model, s.def.reference, k.placement, k.level);
     // fem: where this case stands in its refinement sequence (tables/study_cases.hpp).
-    OJson answer, converged, change;
+    // On the answer, the sequence's Richardson limit of the peak force, its estimated error and
+    // the order used (observed from three refined levels, or the assumed bracket's middle).
+    OJson answer, converged, change, limit, limit_error, order, observed;
     if (k.model == ModelKind::fem) {
       const Sequence* q = s.sequence(k.particle, k.resolution, k.placement);
       answer = q && q->answer == i;
       converged = q && q->answer == i && q->converged;
-      if (q && q->answer == i) change = finite_or_null(q->change.peak);
+      if (q && q->answer == i) {
+        change = finite_or_null(q->change.peak);
+        if (q->extrapolated) {
+          limit = finite_or_null(q->limit.peak);
+          limit_error = finite_or_null(q->limit_error.peak);
+          order = finite_or_null(q->peak.order);
+          observed = q->peak.observed;
+        }
+      }
     }
     const bool ok = StudyCases::usable(&c);
     double pe = std::nan(""), ie = std::nan(""), de = std::nan(""), shift = std::nan("");
@@ -62,7 +76,7 @@ void write_cases_table(const StudyCases& s, const std::filesystem::path& dir) {
       shift = c.summary["first_contact_time"].get<double>() -
               same->summary["first_contact_time"].get<double>();
     }
-    const bool has_mesh = k.model != ModelKind::sphere && c.mesh.is_object();
+    const bool has_mesh = !is_sphere(k.model) && c.mesh.is_object();
     auto mesh_value = [&](const char* key) {
       return has_mesh ? num_or_null(c.mesh, key) : OJson();
     };
@@ -100,6 +114,10 @@ void write_cases_table(const StudyCases& s, const std::filesystem::path& dir) {
                     converged,
                     finite_or_null(s.discretization_error[i]),
                     change,
+                    limit,
+                    limit_error,
+                    order,
+                    observed,
                     finite_or_null(s.err_fem[i].peak),
                     finite_or_null(s.err_fem[i].impulse),
                     finite_or_null(s.err_fem[i].duration),

@@ -13,7 +13,7 @@ std::vector<Classification> classify_resolutions(const StudyCases& s) {
   std::vector<Classification> out;
   for (const ParticleSource& p : def.particles) {
     for (ModelKind m : def.models) {
-      if (m == ModelKind::sphere) continue;
+      if (is_sphere(m)) continue;
       for (Placement pl : def.placements) {
         // Against the converged fem reference (issue 12): the reference answer at the finest
         // resolution, whatever the model; each model's coarse case at every resolution.

@@ -10,7 +10,7 @@ std::vector<CpuFit> fit_cpu(const StudyCases& s) {
   const StudyDef& def = s.def;
   std::vector<CpuFit> fits;
   for (ModelKind m : def.models) {
-    if (m == ModelKind::sphere) continue;
+    if (is_sphere(m)) continue;
     for (Placement pl : def.placements) {
       // log N and log of the median CPU across particles, per resolution with any CPU.
       std::vector<double> lx, ly;

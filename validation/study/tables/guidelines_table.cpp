@@ -17,10 +17,9 @@ OJson particle_diameter_range(const StudyCases& s) {
   const bool has_fem_ref = s.has_fem_reference();
   double d_min = 1e300, d_max = 0;
   for (const ParticleSource& p : def.particles) {
-    const CaseData* c =
-        s.find(p.name, has_fem_ref ? ModelKind::fem : def.models.front(),
-               def.models.front() == ModelKind::sphere && !has_fem_ref ? 0 : def.reference,
-               def.placements.front());
+    const CaseData* c = s.find(p.name, has_fem_ref ? ModelKind::fem : def.models.front(),
+                               is_sphere(def.models.front()) && !has_fem_ref ? 0 : def.reference,
+                               def.placements.front());
     if (c && c->mesh.is_object() && c->mesh.contains("equivalent_radius")) {
       const double d = 2 * c->mesh["equivalent_radius"].get<double>();
       d_min = std::min(d_min, d);

@@ -22,23 +22,63 @@ std::string seq_key(const std::string& p, long n, Placement pl) {
   return p + "|" + std::to_string(n) + "|" + placement_name(pl);
 }
 
-// a against b, per metric (FemErrors): relative errors, and the first-contact shift over b's
-// contact duration.
-FemErrors compare(const CaseData& a, const CaseData& b) {
-  FemErrors e;
-  e.peak = rel_err(a.summary["peak_force"], b.summary["peak_force"]);
-  e.impulse = rel_err(a.summary["impulse"], b.summary["impulse"]);
-  e.duration = rel_err(a.summary["contact_duration"], b.summary["contact_duration"]);
-  const OJson &ta = a.summary["first_contact_time"], &tb = b.summary["first_contact_time"],
-              &d = b.summary["contact_duration"];
-  if (ta.is_number() && tb.is_number() && d.is_number() && d.get<double>() > 0) {
-    e.arrival = (ta.get<double>() - tb.get<double>()) / d.get<double>();
+FemErrors abs_of(const FemErrors& e) {
+  return {std::abs(e.peak), std::abs(e.impulse), std::abs(e.duration), std::abs(e.arrival)};
+}
+
+double number(const OJson& j, const char* key) {
+  return j.contains(key) && j[key].is_number() ? j[key].get<double>() : std::nan("");
+}
+Measures measures_of(const CaseData& c) {
+  return {number(c.summary, "peak_force"), number(c.summary, "impulse"),
+          number(c.summary, "contact_duration"), number(c.summary, "first_contact_time")};
+}
+double rel(double a, double b) {
+  return std::isfinite(a) && std::isfinite(b) && b != 0 ? (a - b) / b : std::nan("");
+}
+// a against reference values b (compare's measures).
+FemErrors compare(const CaseData& a, const Measures& b) {
+  const Measures m = measures_of(a);
+  FemErrors e{rel(m.peak, b.peak), rel(m.impulse, b.impulse), rel(m.duration, b.duration)};
+  if (std::isfinite(m.first_contact) && std::isfinite(b.first_contact) && b.duration > 0) {
+    e.arrival = (m.first_contact - b.first_contact) / b.duration;
+  }
+  return e;
+}
+FemErrors compare(const Measures& a, const Measures& b) {
+  FemErrors e{rel(a.peak, b.peak), rel(a.impulse, b.impulse), rel(a.duration, b.duration)};
+  if (std::isfinite(a.first_contact) && std::isfinite(b.first_contact) && b.duration > 0) {
+    e.arrival = (a.first_contact - b.first_contact) / b.duration;
   }
   return e;
 }
 
-FemErrors abs_of(const FemErrors& e) {
-  return {std::abs(e.peak), std::abs(e.impulse), std::abs(e.duration), std::abs(e.arrival)};
+// The sequence's limit: its refined levels (level > 0) extrapolated per metric; the first-contact
+// time is not (it is the free flight's, the same at every level within steps): the answer's, with
+// its last change as the error.
+void extrapolate(Sequence& q, const std::vector<const CaseData*>& seq) {
+  const CaseData& answer = *seq.back();
+  q.limit = measures_of(answer);
+  q.limit_error = q.change;
+  std::vector<const CaseData*> refined;
+  for (const CaseData* c : seq) {
+    if (c->key.level > 0) refined.push_back(c);
+  }
+  if (refined.size() < 2 || refined.back() != &answer) return;
+  std::vector<double> sizes;
+  for (const CaseData* c : refined) sizes.push_back(c->key.relative_size);
+  auto along = [&](double Measures::*field, double* limit, double* error) {
+    std::vector<double> v;
+    for (const CaseData* c : refined) v.push_back(measures_of(*c).*field);
+    const Extrapolation e = richardson(sizes, v);
+    *limit = e.limit;
+    *error = e.error;
+    return e;
+  };
+  q.peak = along(&Measures::peak, &q.limit.peak, &q.limit_error.peak);
+  along(&Measures::impulse, &q.limit.impulse, &q.limit_error.impulse);
+  along(&Measures::duration, &q.limit.duration, &q.limit_error.duration);
+  q.extrapolated = true;
 }
 
 // The refinement sequences (fem), the references, and each case's errors against them.
@@ -63,31 +103,29 @@ void settle(StudyCases& s) {
         q.answer = s.index_of(*seq.back());
         q.levels = static_cast<int>(seq.size());
         if (seq.size() >= 2) {
-          q.change = abs_of(compare(*seq[seq.size() - 2], *seq.back()));
+          q.change = abs_of(compare(*seq[seq.size() - 2], measures_of(*seq.back())));
           q.converged = seq.size() >= 2 && seq.back()->key.level > 0 &&
                         q.change.peak < def.refinement.tolerance;
         }
-        const CaseData& answer = s.cases[q.answer];
-        for (int l = 0; l <= top; ++l) {
-          const CaseData* c = s.find(p.name, ModelKind::fem, n, pl, l);
-          if (StudyCases::usable(c)) {
-            s.discretization_error[s.index_of(*c)] =
-                rel_err(c->summary["peak_force"], answer.summary["peak_force"]);
-          }
+        extrapolate(q, seq);
+        // The discretization error of every level: its peak against the sequence's limit.
+        for (const CaseData* c : seq) {
+          s.discretization_error[s.index_of(*c)] = rel(measures_of(*c).peak, q.limit.peak);
         }
         s.sequences[seq_key(p.name, n, pl)] = q;
       }
-      // The reference: the answer at the finest resolution; the geometry's share of its
-      // uncertainty from the next coarser resolution that has a sequence.
+      // The reference: the limit at the finest resolution; the geometry's share of its
+      // uncertainty from the next coarser resolution that has a sequence of the same kind.
       const Sequence* ref = s.sequence(p.name, def.reference, pl);
       if (!ref) continue;
       StudyCases::Reference r;
       r.index = ref->answer;
-      r.discretization = ref->change;
+      r.values = ref->limit;
+      r.discretization = ref->limit_error;
       for (auto it = def.resolutions.rbegin() + 1; it < def.resolutions.rend(); ++it) {
         const Sequence* prev = s.sequence(p.name, *it, pl);
         if (prev && (prev->levels > 1) == (ref->levels > 1)) {
-          r.geometry = abs_of(compare(s.cases[prev->answer], s.cases[ref->answer]));
+          r.geometry = abs_of(compare(prev->limit, ref->limit));
           break;
         }
       }
@@ -104,11 +142,55 @@ void settle(StudyCases& s) {
   for (std::size_t i = 0; i < s.cases.size(); ++i) {
     const CaseData& c = s.cases[i];
     const StudyCases::Reference* r = s.reference(c.key.particle, c.key.placement);
-    if (r && StudyCases::usable(&c)) s.err_fem[i] = compare(c, s.cases[r->index]);
+    if (r && StudyCases::usable(&c)) s.err_fem[i] = compare(c, r->values);
   }
 }
 
 }  // namespace
+
+Extrapolation richardson(const std::vector<double>& sizes, const std::vector<double>& values) {
+  Extrapolation e;
+  const std::size_t n = values.size();
+  if (n < 2 || sizes.size() != n) return e;
+  for (double v : values) {
+    if (!std::isfinite(v)) return e;
+  }
+  const double v3 = values[n - 1], v2 = values[n - 2];
+  if (n >= 3) {
+    // Observed order of the last three: (v1 − v2)/(v2 − v3) = (s1^p − s2^p)/(s2^p − s3^p), which
+    // grows with p; bisection (the sizes need not halve).
+    const double v1 = values[n - 3], s1 = sizes[n - 3], s2 = sizes[n - 2], s3 = sizes[n - 1];
+    const double d1 = v2 - v1, d2 = v3 - v2;
+    if (d1 * d2 > 0 && std::abs(d2) < std::abs(d1)) {
+      const double target = d1 / d2;
+      const auto ratio = [&](double p) {
+        return (std::pow(s1, p) - std::pow(s2, p)) / (std::pow(s2, p) - std::pow(s3, p));
+      };
+      double lo = 1e-3, hi = 20;  // the sizes are at most 1 (of R): no overflow
+      for (int it = 0; it < 100; ++it) {
+        const double mid = 0.5 * (lo + hi);
+        (ratio(mid) < target ? lo : hi) = mid;
+      }
+      const double p = 0.5 * (lo + hi);
+      if (p >= kObservedOrderMin && p <= kObservedOrderMax) {
+        const double correction = d2 / (std::pow(s2 / s3, p) - 1);
+        e.limit = v3 + correction;
+        e.error = kSafetyObserved * std::abs(correction) / std::abs(e.limit);
+        e.order = p;
+        e.observed = true;
+        return e;
+      }
+    }
+  }
+  // The two finest levels at both ends of the assumed bracket.
+  const double r = sizes[n - 2] / sizes[n - 1], d = v3 - v2;
+  const double lo = v3 + d / (std::pow(r, kAssumedOrderLow) - 1),
+               hi = v3 + d / (std::pow(r, kAssumedOrderHigh) - 1);
+  e.limit = 0.5 * (lo + hi);
+  e.error = e.limit != 0 ? 0.5 * std::abs(lo - hi) / std::abs(e.limit) : std::nan("");
+  e.order = 0.5 * (kAssumedOrderLow + kAssumedOrderHigh);
+  return e;
+}
 
 const CaseData* StudyCases::find(const std::string& particle, ModelKind m, long resolution,
                                  Placement pl, int level) const {
@@ -152,7 +234,7 @@ StudyCases load_study_cases(const StudyDef& def, const fs::path& dir) {
     } else {
       c.status = "missing";
     }
-    const long faces = k.model == ModelKind::sphere ? def.reference : k.resolution;
+    const long faces = is_sphere(k.model) ? def.reference : k.resolution;
     const fs::path mj = dir / "meshes" / k.particle / std::to_string(faces) / "mesh.json";
     if (fs::exists(mj)) c.mesh = OJson::parse(io::read_json_file(mj).dump());
     s.index[key_of(k.particle, k.model, k.resolution, k.placement, k.level)] = s.cases.size();
@@ -193,7 +275,7 @@ OJson finite_or_null(double x) {
 }
 
 OJson resolution_or_null(ModelKind m, long resolution) {
-  return m == ModelKind::sphere ? OJson() : OJson(resolution);
+  return is_sphere(m) ? OJson() : OJson(resolution);
 }
 
 void write_csv(const fs::path& file, const std::vector<std::string>& header,

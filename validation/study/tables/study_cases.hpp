@@ -47,15 +47,54 @@ struct FemErrors {
   }
 };
 
+// The measured values a reference supplies per kMetrics (the first-contact time as a time).
+struct Measures {
+  double peak = std::nan(""), impulse = std::nan(""), duration = std::nan(""),
+         first_contact = std::nan("");
+};
+
+// The assumed order of the fem peak force, impulse and contact duration under the study's graded
+// refinement, where a sequence has only two refined levels: the orders the Hertz gate measured on
+// the same grading (reports/fem/hertz_convergence.md, "block, graded" at a/R 0.05-0.15: peak
+// 1.16-2.68, duration 1.23-3.18), bracketed as [1.2, 2.7].
+inline constexpr double kAssumedOrderLow = 1.2, kAssumedOrderHigh = 2.7;
+// An observed order (three refined levels) outside this range is not trusted (oscillating or
+// pre-asymptotic levels): the two finest levels are extrapolated with the assumed bracket.
+inline constexpr double kObservedOrderMin = 0.5, kObservedOrderMax = 5.0;
+// Roache's safety factor on the error of a three-level extrapolation at its observed order
+// (Roache 1998, "Verification and Validation in Computational Science", GCI with Fs = 1.25).
+inline constexpr double kSafetyObserved = 1.25;
+
+// A Richardson extrapolation of one metric along the refined levels (docs/study.md,
+// "The reference"): the limit, its estimated error (relative to the limit), the order used, and
+// whether that order was observed (three levels, monotone, in range) or assumed (the bracket).
+struct Extrapolation {
+  double limit = std::nan("");
+  double error = std::nan("");  // relative: |estimate − limit| bound / |limit|
+  double order = std::nan("");  // observed; or the bracket's middle when assumed
+  bool observed = false;
+};
+// values[k] at element sizes sizes[k] (descending, at least two): with three or more, the
+// observed order of the last three when they change monotonically at an order within
+// [kObservedOrderMin, kObservedOrderMax], the limit at it and kSafetyObserved × its last
+// correction as the error; otherwise the two finest levels extrapolated at both ends of the
+// assumed bracket, the limit their mean and the error half their spread.
+Extrapolation richardson(const std::vector<double>& sizes, const std::vector<double>& values);
+
 // The fem refinement sequence of one (particle, resolution, placement): its answer (the finest
 // usable level; the coarse case when the study refines none), whether the last refinement moved
-// the peak force by less than the study's tolerance, and per metric the change between the two
-// finest levels, the answer's estimated discretization error (NaN with a single level).
+// the peak force by less than the study's tolerance, per metric the change between the two
+// finest levels, and the limit: the Richardson extrapolation of its refined levels (the answer's
+// own values, with error = the last change, when fewer than two refined levels ran).
 struct Sequence {
   std::size_t answer = 0;  // case index
   int levels = 0;          // usable levels
   bool converged = false;
   FemErrors change;
+  Measures limit;
+  FemErrors limit_error;      // per metric, relative (the first contact: over the duration)
+  Extrapolation peak;         // the peak force's extrapolation (order, observed), for cases.csv
+  bool extrapolated = false;  // at least two refined levels
 };
 
 struct StudyCases {
@@ -66,12 +105,14 @@ struct StudyCases {
   // sequence (the discretization error); NaN for other models.
   std::vector<double> discretization_error;
   std::map<std::string, Sequence> sequences;  // particle|resolution|placement, fem only
-  // The reference of each particle|placement: the fem answer at the finest resolution, and its
-  // uncertainty per metric, √(discretization² + geometry²): the change of its own sequence's
-  // last refinement, and the change of the converged answer from the next coarser resolution
-  // (is the finest geometry fine enough?).
+  // The reference of each particle|placement: the limit of the fem sequence at the finest
+  // resolution (its Richardson extrapolation; `index` the finest case, whose curve the
+  // classification compares), and its uncertainty per metric, √(discretization² + geometry²):
+  // the extrapolation's estimated error, and the change of the limit from the next coarser
+  // resolution that was refined (is the finest geometry fine enough?).
   struct Reference {
     std::size_t index = 0;
+    Measures values;
     FemErrors discretization, geometry, uncertainty;
   };
   std::map<std::string, Reference> references;

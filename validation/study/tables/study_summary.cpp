@@ -23,7 +23,7 @@ std::pair<double, std::map<std::string, double>> cpu_totals(const StudyCases& s)
       total += c.cpu;
       by_model[model_name(c.key.model)] += c.cpu;
     }
-    if (c.mesh.is_object() && c.key.model != ModelKind::sphere &&
+    if (c.mesh.is_object() && !is_sphere(c.key.model) &&
         c.key.placement == def.placements.front() && c.key.model == def.models.front()) {
       total += c.mesh.value("mesh_cpu_seconds", 0.0);
       by_model["meshing"] += c.mesh.value("mesh_cpu_seconds", 0.0);

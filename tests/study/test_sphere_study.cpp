@@ -1,0 +1,137 @@
+// The study's fem path on a sphere (issue 12, "Validation"): a sphere-like particle named by path
+// in a small study definition (tests/study/sphere_study.json), run through `run_study` with its
+// refinement sequence, its Richardson limit (tables/study_cases.hpp) against Hertz corrected by
+// the finite-sphere reference (validation/reference/finite_sphere.hpp) and against plain Hertz.
+// Ties the study's reference to the convergence issue's gate (reports/fem/hertz_convergence.md).
+//
+// Measured (2 December 2026, 2 threads on the loaded shared machine: 242 s of CPU, 13 min wall):
+// a/R = 0.049; Hertz peak 5512 N, finite sphere 5635 N (+2.23 %); fem peak coarse 6048 N, h = 0.04 R
+// 5764 N, 0.02 R 5734 N, limit 5720 N ± 0.15 %: +1.52 % from the finite sphere, +3.79 % from
+// Hertz. The grading is the study key `growth` = 0.15 (sphere_study.json). At the default
+// study's growth of 0.3 the same sequence (165 s of CPU) gave 5831, 5813 N and a limit of 5804 N
+// ± 0.09 %: +3.01 % from the finite sphere, failing the 2 % by 1.0 point. Refining h at the strike
+// point leaves the far field at 0.3 × its distance from the contact, too stiff by about a point
+// (the material beyond 3a carries about a quarter of the compliance, reports/fem/
+// hertz_convergence.md), and the extrapolation's error (0.09 %) cannot see a bias the sequence
+// does not refine away.
+#include <cmath>
+#include <filesystem>
+#include <fstream>
+#include <iostream>
+#include <numbers>
+#include <string>
+
+#include <gtest/gtest.h>
+
+#include "geometry/element_size.hpp"
+#include "geometry/geodesic_sphere.hpp"
+#include "geometry/mass_properties.hpp"
+#include "geometry/write_mesh.hpp"
+#include "reference/finite_sphere.hpp"
+#include "study/study_def.hpp"
+#include "study/study_run.hpp"
+#include "study/tables/study_cases.hpp"
+
+namespace asperity::study {
+namespace {
+namespace fs = std::filesystem;
+
+// The particle: a sphere of radius R = 25 mm (a geodesic icosphere of frequency 8, edge 0.14 R),
+// bisected near its strike point (the lowest vertex, where the study's "lowest" placement puts
+// the contact) with every new vertex put back on the sphere, down to facets of edge 0.0167 R
+// within 0.15 R of it. At the study's speed (sphere_study.json: 1.25 m/s, E = 50 GPa, ν = 0.3,
+// ρ = 2650 kg/m³, rigid block) Hertz gives a/R = 0.050, so a facet's sagitta e²/(8R) = 3.5e-5 R
+// is 1.4 % of the approach a²/R and the contact patch (radius a = 3 facets) is sphere-like; the
+// patch of 3 contact radii holds the pressure's footprint. (Facets of a/4 at a/R = 0.04, the
+// first try, cost 1.5e-9 s steps at α = 100: over 200 000 steps for the coarse case alone.)
+constexpr double kRadius = 0.025, kEdge = 0.0167 * kRadius, kPatch = 0.15 * kRadius;
+
+SurfaceMesh sphere_surface() {
+  SurfaceMesh s = geometry::geodesic_sphere(8);
+  s.vertices *= kRadius;
+  // the lowest vertex of the icosphere: the strike point
+  Eigen::Index low = 0;
+  for (Eigen::Index i = 1; i < s.vertices.cols(); ++i) {
+    if (s.vertices(2, i) < s.vertices(2, low)) low = i;
+  }
+  const geometry::ElementSize fine{
+      .size = kEdge, .focus = s.vertices.col(low), .focus_radius = kPatch, .growth = 1.0};
+  for (Eigen::Index before = -1; before != s.faces.cols();) {
+    before = s.faces.cols();
+    s = geometry::subdivide_surface(s, fine);
+    for (Eigen::Index i = 0; i < s.vertices.cols(); ++i)
+      s.vertices.col(i) *= kRadius / s.vertices.col(i).norm();
+  }
+  return s;
+}
+
+TEST(SphereStudy, RefinedFemPeakMatchesTheFiniteSphereAndHertz) {
+  const fs::path work = fs::temp_directory_path() / "asperity_sphere_study";
+  fs::remove_all(work);
+  fs::create_directories(work);
+  // The definition names the mesh by path, beside it: write both into the work folder.
+  const SurfaceMesh surface = sphere_surface();
+  geometry::write_surface_mesh(work / "sphere_strike_refined.off", surface);
+  fs::copy_file(fs::path(ASPERITY_SOURCE_DIR) / "tests/study/sphere_study.json",
+                work / "sphere_study.json");
+  const StudyDef def = load_study(work / "sphere_study.json");
+  // The study keeps a mesh of exactly its resolution's triangle count: the definition's
+  // resolution is the generated surface's, so the surface is used as it is (no simplification).
+  ASSERT_EQ(def.resolutions.size(), 1u);
+  ASSERT_EQ(def.resolutions[0], static_cast<long>(surface.faces.cols()))
+      << "sphere_study.json's resolution must equal the generated surface's triangle count";
+  ASSERT_EQ(def.refinement.sizes.size(), 2u);
+
+  StudyRunOptions run{.jobs = 2, .quiet = true};
+  const StudyOutcome outcome = run_study(def, work / "out", run);
+  ASSERT_EQ(outcome.failed, 0);
+  const tables::StudyCases cases = tables::load_study_cases(def, work / "out");
+  const tables::Sequence* seq = cases.sequence("sphere", def.resolutions[0], Placement::lowest);
+  ASSERT_NE(seq, nullptr);
+  ASSERT_TRUE(seq->extrapolated);
+  ASSERT_EQ(seq->levels, 3);  // coarse, and the two refined sizes
+
+  // The references for the meshed volume's mass (the faceted sphere's volume is 0.5 % short of
+  // the sphere's; Hertz and the finite sphere are both taken at the mass that actually strikes).
+  const double mass = def.material.density * geometry::mass_properties(surface).volume;
+  const reference::FiniteSphereImpact ref = reference::finite_sphere_impact_with_mass(
+      def.material.young, def.material.poisson, mass, kRadius, def.speed);
+  const double a_over_r = std::sqrt(ref.hertz_max_approach / kRadius);
+  const double finite_correction = ref.peak_force / ref.hertz_peak_force - 1;
+  const double coarse =
+      cases
+          .cases[cases.index_of(
+              *cases.find("sphere", ModelKind::fem, def.resolutions[0], Placement::lowest, 0))]
+          .summary["peak_force"]
+          .get<double>();
+  const double h1 = cases.find("sphere", ModelKind::fem, def.resolutions[0], Placement::lowest, 1)
+                        ->summary["peak_force"]
+                        .get<double>();
+  const double h2 = cases.find("sphere", ModelKind::fem, def.resolutions[0], Placement::lowest, 2)
+                        ->summary["peak_force"]
+                        .get<double>();
+  const double limit = seq->limit.peak;
+  const double vs_finite = limit / ref.peak_force - 1, vs_hertz = limit / ref.hertz_peak_force - 1;
+  std::cout << "a/R " << a_over_r << ", Hertz peak " << ref.hertz_peak_force << " N, finite sphere "
+            << ref.peak_force << " N (+" << 100 * finite_correction << " %); fem peak: coarse "
+            << coarse << ", h=" << def.refinement.sizes[0] << "R " << h1
+            << ", h=" << def.refinement.sizes[1] << "R " << h2 << ", limit " << limit << " ± "
+            << 100 * seq->limit_error.peak << " %; limit vs finite sphere " << 100 * vs_finite
+            << " %, vs Hertz " << 100 * vs_hertz << " %; CPU " << outcome.cpu_seconds << " s\n";
+
+  // The definition's speed gives a/R in 0.03–0.05, where the finite-sphere correction is known
+  // (reports/fem/finite_sphere.md: +2.26 % at a/R = 0.05) and small against the 2 % band.
+  EXPECT_GT(a_over_r, 0.03);
+  EXPECT_LT(a_over_r, 0.051);
+  // 2 %: the convergence issue's gate tolerance (reports/fem/hertz_convergence.md), held against
+  // the finite sphere, the limit of a finite elastic sphere's impact (the 3D gates' limits sit
+  // within 2 % of it at every a/R measured).
+  EXPECT_LT(std::abs(vs_finite), 0.02);
+  // Against plain Hertz (half-spaces): 2 % plus the finite-sphere correction, which is the
+  // physics a half-space law leaves out, not a solver error.
+  EXPECT_LT(std::abs(vs_hertz), 0.02 + finite_correction);
+  fs::remove_all(work);
+}
+
+}  // namespace
+}  // namespace asperity::study
