@@ -5,8 +5,8 @@
 // Ties the study's reference to the convergence issue's gate (reports/fem/hertz_convergence.md).
 //
 // Measured (2 December 2026, 2 threads on the loaded shared machine: 242 s of CPU, 13 min wall):
-// a/R = 0.049; Hertz peak 5512 N, finite sphere 5635 N (+2.23 %); fem peak coarse 6048 N, h = 0.04 R
-// 5764 N, 0.02 R 5734 N, limit 5720 N ± 0.15 %: +1.52 % from the finite sphere, +3.79 % from
+// a/R = 0.049; Hertz peak 5512 N, finite sphere 5635 N (+2.23 %); fem peak coarse 6048 N, h = 0.04
+// R 5764 N, 0.02 R 5734 N, limit 5720 N ± 0.15 %: +1.52 % from the finite sphere, +3.79 % from
 // Hertz. The grading is the study key `growth` = 0.15 (sphere_study.json). At the default
 // study's growth of 0.3 the same sequence (165 s of CPU) gave 5831, 5813 N and a limit of 5804 N
 // ± 0.09 %: +3.01 % from the finite sphere, failing the 2 % by 1.0 point. Refining h at the strike
