@@ -620,7 +620,7 @@ def answer_section(doc, guidelines, published):
         if g["element_size_rel"]:
             what += f" h={num(g['element_size_rel']):g}R"
         if g["is_reference"] == "true":
-            what += " (the reference)"
+            what += " (the finest refined level)"
         flag = " unresolved" if g["resolvable"] == "false" else ""
         return (f"{what}: {pct(g['error'], 1)} ± {pct(g['reference_uncertainty'], 1)}{flag}, "
                 f"{fmt(g['cpu_seconds_median'], 3)} s")
