@@ -438,46 +438,6 @@ std::vector<double> face_rows(const World& w) {
   return k_row;
 }
 
-}  // namespace
-
-double limit_penalty(World& w, double factor) {
-  const std::vector<double> k_row = face_rows(w);
-  double scale = 1;
-  for (std::size_t b = 0; b < w.bodies.size(); ++b) {
-    if (w.bodies[b].kind != BodyKind::deformable) continue;
-    const int bi = static_cast<int>(b);
-    const BodySteps s = body_steps(w, bi, k_row);
-    // Undamped: ω(x)/ω_element − factor, so that a body's damping_ratio does not move its penalty.
-    auto excess = [&](double x) {
-      return combined_omega(w, bi, s, x) / s.element.omega_max - factor;
-    };
-    double lo = 0, hi = 1, f_lo = 1 - factor, f_hi = excess(1);
-    if (f_hi <= 0) continue;
-    int side = 0;  // Illinois: halve the kept end's value when the same end is kept twice
-    for (int it = 0; it < 6; ++it) {
-      const double x = lo - f_lo * (hi - lo) / (f_hi - f_lo);
-      const double fx = excess(x);
-      if (fx <= 0) {
-        lo = x, f_lo = fx;
-        if (side == -1) f_hi *= 0.5;
-        side = -1;
-      } else {
-        hi = x, f_hi = fx;
-        if (side == 1) f_lo *= 0.5;
-        side = 1;
-      }
-    }
-    scale = std::min(scale, lo);
-  }
-  if (scale < 1) {
-    w.penalty *= scale;
-    for (double& k : w.face_stiffness) k *= scale;
-  }
-  return scale;
-}
-
-namespace {
-
 // Illinois regula falsi for the largest x in [lo, hi] with g(x) ≤ 0, given g(lo) ≤ 0 < g(hi):
 // six evaluations, the last x that met it.
 template <class G>
@@ -498,6 +458,32 @@ double largest_meeting(G g, double lo, double hi, double g_lo, double g_hi) {
   }
   return lo;
 }
+
+}  // namespace
+
+double limit_penalty(World& w, double factor) {
+  const std::vector<double> k_row = face_rows(w);
+  double scale = 1;
+  for (std::size_t b = 0; b < w.bodies.size(); ++b) {
+    if (w.bodies[b].kind != BodyKind::deformable) continue;
+    const int bi = static_cast<int>(b);
+    const BodySteps s = body_steps(w, bi, k_row);
+    // Undamped: ω(x)/ω_element − factor, so that a body's damping_ratio does not move its penalty.
+    auto excess = [&](double x) {
+      return combined_omega(w, bi, s, x) / s.element.omega_max - factor;
+    };
+    const double f_hi = excess(1);
+    if (f_hi <= 0) continue;
+    scale = std::min(scale, largest_meeting(excess, 0, 1, 1 - factor, f_hi));
+  }
+  if (scale < 1) {
+    w.penalty *= scale;
+    for (double& k : w.face_stiffness) k *= scale;
+  }
+  return scale;
+}
+
+namespace {
 
 // What limit_face_penalty and scale_contact_mass share for one deformable body: its element
 // bound ω_e (unscaled), its nodes' face rows c_i, and the γ where the factor is met: γ_lo =
