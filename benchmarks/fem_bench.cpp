@@ -1,6 +1,7 @@
 // FEM/DEM benchmarks: the two kernels that take the time, and whole collisions by resolution.
 #include <benchmark/benchmark.h>
 
+#include <algorithm>
 #include <ctime>
 
 #include "contact/munjiza_potential.hpp"
@@ -87,30 +88,50 @@ BENCHMARK(BM_ContactKernel)->Arg(0)->Arg(1);
 #if ASPERITY_HAVE_GEOMETRY
 const Material kRock{.name = "rock", .density = 2650, .young = 5e10, .poisson = 0.25};
 
-// The bench_fem collision: a tetrahedral particle, deformable, striking a fixed block at 1 m/s
-// from 0.2 mm above it; one run to the end of the first contact at dt = 0.5 × the predicted
-// critical step. CPU seconds per collision are the time; the profile counters say where it goes.
+// The contact's share of the step the collisions run with: 0, α = 10 as the WorldDef gives it;
+// 2, what a scene that leaves the penalty to the solver gets (contact.max_contact_factor 2 met by
+// face-penalty, run/run_fdem.cpp). Set by --scene-default.
+double g_contact_factor = 0;
+
+// The bench_fem collision's world: a tetrahedral particle, deformable, 0.2 mm above a fixed block,
+// falling at 1 m/s; the contact as g_contact_factor says.
+fdem::WorldDef collision_def(const TetMesh& mesh) {
+  fdem::WorldDef def;
+  TetMesh m = mesh;
+  m.nodes.row(2).array() += 0.0002 - m.nodes.row(2).minCoeff();
+  def.bodies.push_back({.name = "rock",
+                        .kind = fdem::BodyKind::deformable,
+                        .mesh = m,
+                        .material = kRock,
+                        .velocity = Vec3(0, 0, -1)});
+  def.bodies.push_back({.name = "block",
+                        .kind = fdem::BodyKind::fixed,
+                        .mesh = fdem::box_mesh(Vec3(-0.1, -0.1, -0.05), Vec3(0.1, 0.1, 0), 1, 1, 1),
+                        .material = kRock});
+  def.contact.max_contact_factor = g_contact_factor;
+  def.contact.contact_step_fix = fdem::ContactStepFix::face_penalty;
+  return def;
+}
+
+// The bench_fem collision: one run to the end of the first contact at dt = 0.5 × the predicted
+// critical step. CPU seconds of the run per collision are the time (the world's set-up and
+// critical step apart: setup_cpu_s); the profile counters say where it goes.
 void run_collision(benchmark::State& state, const TetMesh& mesh) {
   for (auto _ : state) {
-    fdem::WorldDef def;
-    TetMesh m = mesh;
-    m.nodes.row(2).array() += 0.0002 - m.nodes.row(2).minCoeff();
-    def.bodies.push_back({.name = "rock",
-                          .kind = fdem::BodyKind::deformable,
-                          .mesh = m,
-                          .material = kRock,
-                          .velocity = Vec3(0, 0, -1)});
-    def.bodies.push_back(
-        {.name = "block",
-         .kind = fdem::BodyKind::fixed,
-         .mesh = fdem::box_mesh(Vec3(-0.1, -0.1, -0.05), Vec3(0.1, 0.1, 0), 1, 1, 1),
-         .material = kRock});
+    const fdem::WorldDef def = collision_def(mesh);
+    const std::clock_t s0 = std::clock();
     fdem::World w = fdem::make_world(def);
     const fdem::CriticalStep step = fdem::critical_step(w);
     const std::clock_t c0 = std::clock();
     const fdem::scenes::Impact im = fdem::scenes::run_impact(w, 0.01);
     const double cpu = static_cast<double>(std::clock() - c0) / CLOCKS_PER_SEC;
     state.SetIterationTime(cpu);
+    state.counters["setup_cpu_s"] = static_cast<double>(c0 - s0) / CLOCKS_PER_SEC;
+    state.counters["contact_factor_limit"] = g_contact_factor;
+    state.counters["penalty_scale_min"] =
+        w.tet_penalty_scale.empty()
+            ? 1.0
+            : *std::min_element(w.tet_penalty_scale.begin(), w.tet_penalty_scale.end());
     state.counters["tets"] = w.elements[0].size();
     state.counters["surface_tets"] = static_cast<double>(w.surface_tets.cols());
     state.counters["steps"] = static_cast<double>(im.steps);
@@ -170,6 +191,32 @@ void BM_CollisionSet(benchmark::State& state, geometry::ParticleDef pd, long fac
   run_collision(state, geometry::prepare_particle(geometry::random_particle(pd), "rock", o).tets);
 }
 
+// The set-up alone of the collision's world at the scene default (make_world with
+// contact.max_contact_factor 2 by face-penalty, whose fdem::limit_face_penalty evaluates the
+// element step bound several times, then the critical step), for the particles of the set at 1000
+// surface triangles, meshed once outside the timing (issue 11: the default's set-up cost).
+void BM_CollisionSetup(benchmark::State& state, geometry::ParticleDef pd) {
+  pd.size = 0.05;
+  geometry::PipelineOptions o;
+  o.faces = 1000;
+  const TetMesh mesh = geometry::prepare_particle(geometry::random_particle(pd), "rock", o).tets;
+  const double kept = g_contact_factor;
+  g_contact_factor = 2;
+  fdem::WorldDef def = collision_def(mesh);
+  g_contact_factor = kept;
+  for (auto _ : state) {
+    fdem::World w = fdem::make_world(def);
+    const fdem::CriticalStep step = fdem::critical_step(w);
+    benchmark::DoNotOptimize(step);
+    state.counters["dt"] = step.critical;
+    state.counters["penalty_scale_min"] =
+        w.tet_penalty_scale.empty()
+            ? 1.0
+            : *std::min_element(w.tet_penalty_scale.begin(), w.tet_penalty_scale.end());
+  }
+  state.counters["tets"] = static_cast<double>(mesh.tets.cols());
+}
+
 void register_set(int count) {
   const io::Json set =
       io::read_json_file(std::string(ASPERITY_SOURCE_DIR) + "/data/particles/set.json");
@@ -190,6 +237,12 @@ void register_set(int count) {
           ->UseManualTime()
           ->Unit(benchmark::kSecond);
     }
+    benchmark::RegisterBenchmark(
+        ("BM_CollisionSetup/" + p.at("name").get<std::string>() + "/1000").c_str(),
+        BM_CollisionSetup, pd)
+        ->Iterations(3)
+        ->Unit(benchmark::kMillisecond)
+        ->MeasureProcessCPUTime();
   }
 }
 #endif
@@ -197,8 +250,10 @@ void register_set(int count) {
 }  // namespace
 }  // namespace asperity
 
-// Google Benchmark's main, plus --set-particles=K (BM_CollisionSet over the first K particles of
-// the set; default 2, "all" for every one).
+// Google Benchmark's main, plus --set-particles=K (BM_CollisionSet and BM_CollisionSetup over the
+// first K particles of the set; default 2, "all" for every one) and --scene-default (the
+// collisions at the scene default's contact.max_contact_factor 2 by face-penalty instead of
+// α = 10 as the WorldDef gives it).
 int main(int argc, char** argv) {
 #if ASPERITY_HAVE_GEOMETRY
   int count = 2;
@@ -208,6 +263,8 @@ int main(int argc, char** argv) {
     if (a.rfind("--set-particles=", 0) == 0) {
       const std::string v = a.substr(16);
       count = v == "all" ? 1 << 30 : std::stoi(v);
+    } else if (a == "--scene-default") {
+      asperity::g_contact_factor = 2;
     } else {
       argv[kept++] = argv[i];
     }

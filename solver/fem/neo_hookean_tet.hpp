@@ -15,11 +15,13 @@
 // nodes 1..3 and minus their sum for node 0 (Sifakis & Barbič 2012, §4.3).
 #pragma once
 
+#include <cfloat>
 #include <cmath>
 
 #include <Eigen/Core>
 
 #include "core/vec.hpp"
+#include "fem/log_series.hpp"
 
 namespace asperity::fem {
 
@@ -113,6 +115,17 @@ inline void tet_nodal_forces(const double* b, double volume, Lame lame, double J
   h[8 * S] = v * (P20 * b2 + P21 * b5 + P22 * b8);
 }
 
+// ln J as every element kernel takes it: log_series (fem/log_series.hpp, which the batched loop
+// runs in vector registers) for normal finite J, std::log for subnormal or infinite J (J ≤ 0 is
+// an inverted element: the callers skip it). One function for both loops keeps them equal to the
+// bit.
+inline bool log_series_covers(double J) {
+  return J >= DBL_MIN && J <= DBL_MAX;
+}
+inline double tet_log_j(double J) {
+  return log_series_covers(J) ? log_series(J) : std::log(J);
+}
+
 // V₀ Ψ, J, of an element with deformation gradient F (as stage 1 stores it) and ln J.
 template <int S>
 inline double tet_strain_energy(double volume, Lame lame, double ln_j, const double* F) {
@@ -145,7 +158,7 @@ inline double neo_hookean_tet_forces(const double* dm_inv, double volume, Lame l
   double F[9], C[9], h[9];
   const double J = tet_deformation<1>(d, dm_inv, F, C);
   if (!(J > 0)) return J;
-  const double ln_j = std::log(J);
+  const double ln_j = tet_log_j(J);
   tet_nodal_forces<1>(dm_inv, volume, lame, J, ln_j, F, C, h);
   tet_scatter<1>(h, f0, f1, f2, f3);
   if constexpr (kEnergy) *energy += tet_strain_energy<1>(volume, lame, ln_j, F);

@@ -83,7 +83,7 @@ constexpr int kBatch = 32;
 
 // The element loop, batch by batch: gather the batch's edges and Dm⁻¹ into structure of arrays,
 // run the kernel's stages (fem/neo_hookean_tet.hpp) over it as plain loops the compiler
-// vectorizes, the logarithms in between (a library call, one element at a time), then add the
+// vectorizes, the logarithms in between (fem/log_series.hpp, vectorized too), then add the
 // forces to the nodes in element order. Each element's arithmetic and the order of the additions
 // into f and the energy are those of neo_hookean_tet_forces called element by element, so the
 // result is the same to the bit (tests/fem/test_neo_hookean_tet.cpp); only the schedule differs:
@@ -115,8 +115,14 @@ InternalForceResult loop(const TetElements& e, const Eigen::Matrix3Xd& x, const 
       for (int c = 0; c < 9; ++c) b[c * kBatch + i] = bk[c];
     }
     for (int i = 0; i < m; ++i) J[i] = tet_deformation<kBatch>(d + i, b + i, F + i, C + i);
-    // An inverted element (J ≤ 0) gets J = 1 for the arithmetic and adds nothing below.
-    for (int i = 0; i < m; ++i) ln_j[i] = J[i] > 0 ? std::log(J[i]) : 0.0;
+    // ln J of the whole batch as plain arithmetic the compiler vectorizes (fem/log_series.hpp),
+    // then the rare J it does not cover: an inverted element (J ≤ 0) gets ln J = 0 (and J = 1)
+    // for the arithmetic and adds nothing below; a subnormal or infinite J takes std::log, as
+    // tet_log_j does for one element.
+    for (int i = 0; i < m; ++i) ln_j[i] = log_series(J[i]);
+    for (int i = 0; i < m; ++i) {
+      if (!log_series_covers(J[i])) ln_j[i] = J[i] > 0 ? std::log(J[i]) : 0.0;
+    }
     const double* vol = &e.volume[static_cast<std::size_t>(k0)];
     for (int i = 0; i < m; ++i) {
       tet_nodal_forces<kBatch>(b + i, vol[i], e.lame, J[i] > 0 ? J[i] : 1.0, ln_j[i], F + i, C + i,
