@@ -27,8 +27,8 @@ namespace {
 // and at a scene's default (max_contact_factor 2 met by face-penalty, fdem::limit_face_penalty;
 // at α = 10 as asked the contact pulled the step 1.1–4.3× below the elements' limit on the full
 // set) the contact pulls the predicted step at most 2× below the elements' own limit. The
-// penalty is not lowered further than it must be: the factor is within 10 % of 2 (six Illinois
-// steps) wherever a face was lowered at all. The element bound 1/3 ≤ dt_element·c/h ≤ 3 is the
+// penalty is not lowered further than it must be: the factor is within the search's 2 % of 2
+// wherever a face was lowered at all. The element bound 1/3 ≤ dt_element·c/h ≤ 3 is the
 // next test's; the other two fixes (one penalty, contact mass) are tests/fdem/test_time_step.cpp's.
 TEST(MeshStep, ContactCostsAtMostTwiceTheElementStep) {
   const StudyDef def = load_study(std::string(ASPERITY_SOURCE_DIR) + "/data/study/full.json");
@@ -38,7 +38,8 @@ TEST(MeshStep, ContactCostsAtMostTwiceTheElementStep) {
       ASSERT_EQ(m.error, "");
       EXPECT_LE(m.face_factor(), 2.0 + 1e-9);
       if (m.face_scale_min < 1) {
-        EXPECT_GE(m.face_factor(), 1.8);
+        // The search stops within 2 % of the factor (fdem/time_step.cpp, kMeetTolerance).
+        EXPECT_GE(m.face_factor(), 2.0 * 0.98 - 1e-9);
       }
       // α = 10 as asked is what it was: limited only by lowering.
       EXPECT_GE(m.contact_factor(), m.face_factor() - 1e-9);
