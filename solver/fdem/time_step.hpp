@@ -60,7 +60,8 @@ CriticalStep critical_step(const World& world);
 // How: ω² of elements plus face springs grows with s (the springs are linear in p), the element
 // part does not; regula falsi (Illinois) on ω(s)/ω_element − factor (undamped, so a body's
 // damping_ratio leaves its penalty alone) from s = 0 (ratio 1) and s = 1 keeps the last s that
-// meets the factor, six evaluations of the bound.
+// meets the factor, at most six evaluations of the bound, stopping once the factor met is within
+// 2 % of the one asked (in [0.98, 1] × factor).
 // Rigid bodies have no element limit and are left alone.
 double limit_penalty(World& world, double factor);
 
@@ -70,9 +71,10 @@ double limit_penalty(World& world, double factor);
 // a face by the least s of its nodes and a contact tetrahedron by the least s of its surface nodes
 // (World::tet_penalty_scale; a pair takes the smaller of its two). γ = factor² − 1 meets the
 // factor by Weyl's sum alone (ω² ≤ ω_e² + max_i s_i c_i / m_i ≤ factor² ω_e²); regula falsi on
-// the combined bound then raises γ as far as the factor allows, six evaluations. The penalty of
-// a face is so scaled with the stiffness and mass of the element under it: large elements keep
-// α as asked, the small or thin ones that set the step get less. Returns the least face scale.
+// the combined bound then raises γ towards the factor, at most six evaluations, stopping within
+// 2 % of it as limit_penalty does. The penalty of a face is so scaled with the stiffness and mass
+// of the element under it: large elements keep α as asked, the small or thin ones that set the
+// step get less. Returns the least face scale.
 double limit_face_penalty(World& world, double factor);
 
 // The same bound met by contact (nodal) mass scaling (ContactStepFix::mass): each surface node
