@@ -103,31 +103,32 @@ bool boxes_overlap(const contact::TetNodes& a, const contact::TetNodes& b) {
   return !((alo.array() > bhi.array()).any() || (blo.array() > ahi.array()).any());
 }
 
-// Surface tetrahedron k's nodes and box in this contact pass (gathered at its first pair).
-const World::ContactTet& contact_tet_box(World& w, int k) {
+// Surface tetrahedron k's box in this contact pass (computed at its first pair).
+const World::ContactBox& contact_tet_box(World& w, int k) {
+  World::ContactBox& b = w.contact_boxes[static_cast<std::size_t>(k)];
+  if (b.pass != w.contact_passes) {
+    const contact::TetNodes x = gather(w, k);
+    b.lo = b.hi = x[0];
+    for (int i = 1; i < 4; ++i) b.lo = b.lo.cwiseMin(x[i]), b.hi = b.hi.cwiseMax(x[i]);
+    b.pass = w.contact_passes;
+  }
+  return b;
+}
+
+// ... and its nodes and kernel frame (at its first pair whose boxes overlap).
+const World::ContactTet& contact_tet(World& w, int k) {
   World::ContactTet& t = w.contact_tets[static_cast<std::size_t>(k)];
-  if (t.box_pass != w.contact_passes) {
+  if (t.frame_pass != w.contact_passes) {
     t.x = gather(w, k);
-    t.lo = t.hi = t.x[0];
-    for (int i = 1; i < 4; ++i) t.lo = t.lo.cwiseMin(t.x[i]), t.hi = t.hi.cwiseMax(t.x[i]);
-    t.box_pass = w.contact_passes;
+    t.frame = contact::tet_frame(t.x);
+    t.frame_pass = w.contact_passes;
   }
   return t;
 }
 
-// ... and its kernel frame (computed at its first pair whose boxes overlap).
-const contact::TetFrame& contact_tet_frame(World& w, int k) {
-  World::ContactTet& t = w.contact_tets[static_cast<std::size_t>(k)];
-  if (t.frame_pass != w.contact_passes) {
-    t.frame = contact::tet_frame(t.x);
-    t.frame_pass = w.contact_passes;
-  }
-  return t.frame;
-}
-
 // Contact forces of every candidate pair into w.f, with friction, energy and the per-body output.
 // Each surface tetrahedron's nodes, box and frame are computed once in the pass, at its first
-// pair (contact_tet_box, contact_tet_frame): the same numbers as pair by pair.
+// pair (contact_tet_box, contact_tet): the same numbers as pair by pair.
 void contact_forces(World& w, double dt) {
   w.contact_energy = 0;
   w.contacts.reset(static_cast<int>(w.bodies.size()));
@@ -135,14 +136,17 @@ void contact_forces(World& w, double dt) {
   ++w.contact_passes;
   if (w.contact_tets.size() != static_cast<std::size_t>(w.surface_tets.cols())) {
     w.contact_tets.assign(static_cast<std::size_t>(w.surface_tets.cols()), {});
+    w.contact_boxes.assign(static_cast<std::size_t>(w.surface_tets.cols()), {});
   }
   for (TetPair& p : w.pairs) {
-    const World::ContactTet &ta = contact_tet_box(w, p.a), &tb = contact_tet_box(w, p.b);
-    if ((ta.lo.array() > tb.hi.array()).any() || (tb.lo.array() > ta.hi.array()).any()) {
+    const World::ContactBox &ba_box = contact_tet_box(w, p.a), &bb_box = contact_tet_box(w, p.b);
+    if ((ba_box.lo.array() > bb_box.hi.array()).any() ||
+        (bb_box.lo.array() > ba_box.hi.array()).any()) {
       p.spring.setZero();
       continue;
     }
     ++w.contact_evaluations;
+    const World::ContactTet &ta = contact_tet(w, p.a), &tb = contact_tet(w, p.b);
     const contact::TetNodes &a = ta.x, &b = tb.x;
     // The pair's penalty: the smaller of its two tetrahedra's where limit_face_penalty lowered
     // some (one p per pair keeps the pair force the gradient of one potential).
@@ -150,8 +154,8 @@ void contact_forces(World& w, double dt) {
         w.tet_penalty_scale.empty()
             ? w.penalty
             : w.penalty * std::min(w.tet_penalty_scale[p.a], w.tet_penalty_scale[p.b]);
-    const contact::PotentialPairForce c = contact::munjiza_potential(
-        a, contact_tet_frame(w, p.a), b, contact_tet_frame(w, p.b), penalty, w.want_energy);
+    const contact::PotentialPairForce c =
+        contact::munjiza_potential(a, ta.frame, b, tb.frame, penalty, w.want_energy);
     if (!c.touching()) {
       p.spring.setZero();
       continue;

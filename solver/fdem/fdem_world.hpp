@@ -182,15 +182,22 @@ struct World {
   std::vector<TetPair> pairs;
   Eigen::Matrix3Xd x_at_build;
   long rebuilds = 0;
-  // Narrow-phase scratch, per surface tetrahedron: its nodes, box and kernel frame as of contact
+  // Narrow-phase scratch, per surface tetrahedron: its box, nodes and kernel frame as of contact
   // pass `pass` (the potential law's contact_forces counts its passes in contact_passes), so that
-  // a tetrahedron met in several candidate pairs in one step is gathered and inverted once.
+  // a tetrahedron met in several candidate pairs in one step is gathered and inverted once. The
+  // boxes sit in an array of their own: every listed pair reads two and most pairs stop there;
+  // the nodes and frame (352 bytes) are written only for the tetrahedra of pairs whose boxes
+  // overlap (docs/physics.md, "FEM/DEM step cost").
+  struct ContactBox {
+    Vec3 lo, hi;
+    long pass = -1;
+  };
   struct ContactTet {
     contact::TetNodes x;
-    Vec3 lo, hi;
     contact::TetFrame frame;
-    long box_pass = -1, frame_pass = -1;
+    long frame_pass = -1;
   };
+  std::vector<ContactBox> contact_boxes;
   std::vector<ContactTet> contact_tets;
   long contact_passes = 0;
 
