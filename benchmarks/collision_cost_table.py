@@ -63,10 +63,32 @@ def main(path, csv_path=None):
                   f"max {hi[1]:.2f} ({hi[0]}); {sum(x > 1.4 for x in f)} above 1.4.")
         over = [p for p, r in runs.items() if 1000 in r and r[1000]["cpu_s"] > 2]
         print(f"Over 2 s at 1000 faces: {len(over)} ({', '.join(sorted(over)) or 'none'}).")
+        bins = {}
+        for x in e:
+            b = math.floor(x * 10 + 1e-9)
+            bins[b] = bins.get(b, 0) + 1
+        print("\nExponents 100 → 1000: " + ", ".join(
+            f"{n} in [{b / 10:.1f}, {(b + 1) / 10:.1f})" for b, n in sorted(bins.items())) + ".")
+        # Why a particle's exponent is high: the cost is steps × work per step, so the exponent
+        # splits into the steps' (log of the step-count ratio) and the work per step's; dt/dt_element
+        # at 1000 faces says whether the contact (< 0.5: the step below half the elements' own
+        # limit, at the benchmark's 0.5 × the predicted step) or the elements set the step.
+        high = sorted(((x, p) for p, x in k if x > 1.4), reverse=True)
+        if high:
+            print("\n| particle | exponent | steps exponent | work/step exponent | tets 100 → 1000 | "
+                  "dt/dt_element at 100 | at 1000 | least penalty factor at 1000 |")
+            print("| --- | ---: | ---: | ---: | --- | ---: | ---: | ---: |")
+            for x, p in high:
+                a, b = runs[p][100], runs[p][1000]
+                se = math.log(b["steps"] / a["steps"]) / math.log(10)
+                print(f"| {p} | {x:.2f} | {se:.2f} | {x - se:.2f} | {a['tets']:.0f} → "
+                      f"{b['tets']:.0f} | {a['dt'] / a['dt_element']:.2f} | "
+                      f"{b['dt'] / b['dt_element']:.2f} | {b.get('penalty_scale_min', 1):.3g} |")
 
 
     if csv_path:
-        keys = ["cpu_s", "steps", "dt", "dt_element", "dt_contact", "tets", "peak_N"]
+        keys = ["cpu_s", "setup_cpu_s", "steps", "dt", "dt_element", "dt_contact", "tets", "peak_N",
+                "penalty_scale_min"]
         with open(csv_path, "w") as out:
             out.write("particle,faces," + ",".join(keys) + "\n")
             for p in sorted(runs):
