@@ -1,7 +1,11 @@
 # FEM/DEM core: internal-force kernel (tet updates/s), Munjiza contact kernel (pair evaluations/s),
 # and whole particle-on-block collisions at 100–1000 surface triangles (with the geometry
 # pipeline), for the benchmark's particle and for each particle of the generated set
-# (`--set-particles=all`; reports/fem/collision_cost.md).
+# (`--set-particles=all`; `--scene-default` runs the set's collisions at what a scene that leaves
+# the penalty to the solver gets, contact.max_contact_factor 2 by face-penalty, instead of α = 10
+# as given; reports/fem/collision_cost.md), and the set-up alone of those worlds at 1000
+# triangles (BM_CollisionSetup: make_world with the default's face-penalty limit and the critical
+# step; reports/fem/mesh_step.md). The smoke test runs the first two particles of each.
 asperity_benchmark(bench_fem ${CMAKE_CURRENT_LIST_DIR}/fem_bench.cpp)
 target_link_libraries(bench_fem PRIVATE asperity_fdem)
 target_include_directories(bench_fem PRIVATE ${ASPERITY_SOURCE_DIR}/tests/fdem)
