@@ -145,9 +145,8 @@ inline void expect_finest_matches_finite_sphere(const Sequence& q, const char* w
       "  %s: finest level − Hertz: peak %+.4f (filtered %+.4f), duration %+.4f; finite sphere "
       "− Hertz (dynamic) %+.4f (filtered %+.4f) / %+.4f, quasi-static %+.4f / %+.4f; limits "
       "(filtered peak, duration) %+.4f / %+.4f\n",
-      what, l.err_force, l.err_force_filtered, l.err_duration, f.peak, f.peak_filtered,
-      f.duration, f.quasi_static_peak, f.quasi_static_duration, q.peak_filtered.limit,
-      q.duration.limit);
+      what, l.err_force, l.err_force_filtered, l.err_duration, f.peak, f.peak_filtered, f.duration,
+      f.quasi_static_peak, f.quasi_static_duration, q.peak_filtered.limit, q.duration.limit);
   EXPECT_NEAR(l.err_force_filtered, f.peak_filtered, 0.02) << what << ": filtered peak";
   EXPECT_NEAR(l.err_force, f.peak, 0.02) << what << ": raw peak";
   EXPECT_NEAR(l.err_duration, f.duration, 0.02) << what << ": duration";
