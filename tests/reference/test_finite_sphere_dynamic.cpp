@@ -171,15 +171,18 @@ TEST(FiniteSphereDynamicSlow, TendsToTheQuasiStaticReferenceAsTheImpactSlows) {
 }
 
 // The gates' entry point: the default model (M = 16, T_H/1000), cached, with Hertz beside it;
-// ρ given or the mass given are the same impact.
+// ρ given or the mass given are the same impact. At the 3D scene's a/R = 0.107 it differs from the
+// quasi-static reference by more than 0.3 point in duration (measured +0.40), the criterion that
+// moved the 3D gates onto it (tests/fdem/hertz_gate.hpp).
 TEST(FiniteSphereDynamicSlow, GatesEntryPointIsTheDefaultModelCached) {
   const double v = speed_for(0.107);
   const ref::FiniteSphereDynamicImpact a = ref::finite_sphere_impact_dynamic(kE, kNu, kRho, kR, v);
   const ref::FiniteSphereDynamicImpact b =
       ref::finite_sphere_impact_dynamic_with_mass(kE, kNu, kMass, kR, v);
-  const ref::FiniteSphereDynamicImpact c = run(0.107, 16, 1000);
-  EXPECT_EQ(a.step_mean_peak_force, c.step_mean_peak_force);
-  EXPECT_EQ(a.duration, c.duration);
-  EXPECT_NEAR(b.duration, a.duration, 1e-12 * a.duration);
-  EXPECT_EQ(a.steps, c.steps);
+  EXPECT_EQ(a.steps, b.steps);
+  EXPECT_EQ(a.duration, b.duration);
+  EXPECT_NEAR(a.dt * 1000.0, a.hertz_duration, 1e-12 * a.hertz_duration);
+  const ref::FiniteSphereImpact q = ref::finite_sphere_impact(kE, kNu, kRho, kR, v);
+  EXPECT_NEAR(a.hertz_peak_force, q.hertz_peak_force, 1e-12 * q.hertz_peak_force);
+  EXPECT_GT(duration_error(a) - (q.duration / q.hertz_duration - 1.0), 0.003);
 }
