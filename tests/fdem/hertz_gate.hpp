@@ -91,7 +91,7 @@ inline void expect_converges(const Sequence& q, const char* what, bool filtered 
 // contact), which the gates hold the 3D runs against; and the quasi-static one
 // (finite_sphere.hpp: the same sphere pressed by a d'Alembert body force, its law integrated as
 // one degree of freedom), printed beside it. They differ by more than the 0.3 point that decides
-// it at a/R = 0.107 (duration −3.19 against −3.71 %; reports/fem/finite_sphere_dynamic.md), and
+// it at a/R = 0.107 (duration −3.31 against −3.71 %; reports/fem/finite_sphere_dynamic.md), and
 // the 3D run is dynamic. Cost: about 5 s of CPU per mass and speed, cached.
 struct FiniteSphere {
   double peak = 0;           // the dynamic reference's largest step-mean force (its raw peak)

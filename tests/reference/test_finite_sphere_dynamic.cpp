@@ -54,7 +54,7 @@ double observed_order(double coarse, double middle, double fine) {
 // changes by exactly the trapezoidal work of the contact forces, ½(f_n + f_{n+1})·Δu. That work
 // is the scheme's only energy error: zero while a node stays in contact (its gap stays 0), nonzero
 // only at the transitions (a node entering contact loses ½ R Δu, one leaving gains it). Measured
-// +7.4e-4 of ½mv² here (+2e-4 to +7e-4 on the finer settings of reports/fem/
+// +7.4e-4 of ½mv² here (+2e-5 to +7e-4 over the convergence table of reports/fem/
 // finite_sphere_dynamic.md, +2.2e-3 at M = 8 with 2000 steps, where the contact chatters once):
 // held below 2e-3. The rebound cannot carry more kinetic energy in its centre of mass than the
 // sphere has in all (e² ≤ E_end/E_0), and an elastic rebound leaves a little in vibration: the
@@ -113,7 +113,7 @@ TEST(FiniteSphereDynamic, RefusesBadArguments) {
 // 0.107. The step-mean peak (the force the scheme's momentum balance applies over a step) and
 // the T/20-filtered peak converge at least at the scheme's second order (measured: +5.1160,
 // +5.1038, +5.1038 %, order 9: the step error is below 1e-5 by T_H/1000); the duration within
-// 1e-4 of the contact between the two finer steps (the least-squares end, measured 3e-5). The
+// 1e-4 of the contact between the two finer steps (the least-squares end, measured 5.5e-5). The
 // raw per-step peak does not converge (+6.7, +9.4, +28 %): end-of-step contact lets the contact
 // nodes' velocities alternate from step to step (Carpenter, Taylor & Katona 1991), a period-2
 // force the step mean cancels.
@@ -138,7 +138,7 @@ TEST(FiniteSphereDynamicSlow, ConvergesInTheStep) {
 }
 
 // As the impact slows the contact lasts more periods of the sphere's lowest axisymmetric mode
-// (3.83 ms: T_c/T_mode = 10.3, 6.5, 4.4 at a/R = 0.02, 0.05, 0.107), and the dynamic reference
+// (3.83 ms: T_c/T_mode = 10.2, 6.4, 4.3 at a/R = 0.02, 0.05, 0.107), and the dynamic reference
 // tends to the quasi-static one. The duration difference falls with a/R at a measured order
 // about 2 (1.7 between 0.02 and 0.05, 2.25 between 0.05 and 0.107): the inertia of the body
 // (relative size (T_mode/T_c)² ∝ a/R) corrects only the finite body's share of the compliance,

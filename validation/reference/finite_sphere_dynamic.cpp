@@ -163,7 +163,7 @@ FiniteSphereDynamicImpact simulate_finite_sphere_impact(const FiniteSphereMateri
   // Hertz's force falls as (T − t)^{3/2}, so F^{2/3} is linear in t there. A least-squares line
   // through the steps of the last 2 % of T_Hertz with a force (at least 8; 20 at the default
   // step), which averages out the scheme's period-2 oscillation, gives the zero. Measured spread
-  // between 1000 and 2000 steps per T_Hertz: 3e-5 of the duration.
+  // between 1000 and 2000 steps per T_Hertz: 6e-5 of the duration.
   const auto L = static_cast<std::size_t>(last_contact);
   {
     const auto window = std::max<std::size_t>(

@@ -83,7 +83,7 @@ void richardson(const char* what, double coarse, double middle, double fine) {
   const double p = std::log2(std::abs((coarse - middle) / (middle - fine)));
   std::printf(
       "- %s: %+.4f, %+.4f, %+.4f %%: observed order %.2f, finest level's error %.1e "
-      "(Richardson)\n",
+      "of Hertz's (Richardson)\n",
       what, 100 * coarse, 100 * middle, 100 * fine, p, (fine - middle) / (std::pow(2.0, p) - 1.0));
 }
 
