@@ -439,11 +439,12 @@ std::vector<double> face_rows(const World& w) {
 }
 
 // How close to the factor the searches below stop, as a fraction of it: the contact factor met
-// lies in [(1 − kMeetTolerance) factor, factor]. Each evaluation is one element step bound (up to
-// nine 12×12 eigen-solves per element), and the last few of the six only moved the factor in its
-// third digit: stopping at 2 % took the set-up (make_world + critical_step) of the bench_fem
-// collision at 1000 triangles from 0.91, 0.84, 0.59 to 0.62, 0.60, 0.35 s of CPU on the three of
-// five particles whose faces it lowers (BM_CollisionSetup; reports/fem/mesh_step.md).
+// lies in [(1 − kMeetTolerance) factor, factor] unless their six steps run out first (1.92–1.96
+// of 2 on 4 of the 161 lowered meshes of the bench_fem set). Each evaluation is one element step
+// bound (up to nine 12×12 eigen-solves per element), and the last few of the six mostly moved
+// the factor in its third digit: stopping at 2 % took the set-up (make_world + critical_step) of
+// the bench_fem collision at 1000 triangles from 0.91, 0.84, 0.59 to 0.62, 0.60, 0.35 s of CPU on
+// the three of five particles whose faces it lowers (BM_CollisionSetup; reports/fem/mesh_step.md).
 constexpr double kMeetTolerance = 0.02;
 
 // Illinois regula falsi for the largest x in [lo, hi] with g(x) ≤ 0, given g(lo) ≤ 0 < g(hi):

@@ -129,7 +129,8 @@ TEST(CriticalStep, RigidFallsBackToEveryFace) {
 // limit_face_penalty, scale_contact_mass) on the coarse ball, whose contact alone pulls its step
 // well below the element limit. For each: the factor is met (to the regula falsi's round-off),
 // and the search stopped within its stated 2 % of it (time_step.cpp, kMeetTolerance; the search
-// keeps only γ that meet the factor, so the met factor lies in [0.98, 1] × factor),
+// keeps only γ that meet the factor, so the met factor lies in [0.98, 1] × factor unless its six
+// steps run out first, which they do not here),
 // and the predicted step is still rigorous for the model it bounds: ≤ 2/ω_exact of the elements
 // plus the (scaled) face springs on the (scaled) lumped mass (exact_omega reads both).
 TEST(ContactStep, EachFixMeetsTheFactorAndStaysRigorous) {
