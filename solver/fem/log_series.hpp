@@ -1,9 +1,10 @@
 // The natural logarithm as plain arithmetic (no library call, no table, no branch), so that the
 // batched element loop (fem/tet_elements.cpp) can take the ln J of a whole batch in vector
-// registers instead of one libm call per element: a quarter of the neo-Hookean element's work
-// was that call (docs/physics.md, "FEM/DEM step cost").
+// registers instead of one libm call per element (a tenth of the batched element work was that
+// call; docs/physics.md, "FEM/DEM step cost").
 //
-// Method (the classical reduction, e.g. Muller, "Elementary Functions", 3rd ed., §11.3): write
+// Method (the classical argument reduction and atanh series, e.g. J.-M. Muller, "Elementary
+// Functions: Algorithms and Implementation"): write
 // x = 2^k (1 + f) with 1 + f in [√½, √2), so |f| ≤ 0.4143; then with s = f/(2 + f),
 //   ln(1 + f) = 2 atanh s = 2s + 2s³/3 + 2s⁵/5 + …,   |s| ≤ 0.1716, z = s² ≤ 0.02944,
 // rearranged as ln(1 + f) = f − f²/2 + s (f²/2 + R), R = Σ_{j≥1} 2 z^j/(2j + 1) (2s = f − s f,
