@@ -15,6 +15,7 @@
 #include "fdem/time_step.hpp"
 #include "fem/linear_elastic_tet.hpp"
 #include "fem/tet_elements.hpp"
+#include "fem/tet_stress.hpp"
 #include "test_material.hpp"
 
 namespace asperity::fem {
@@ -88,6 +89,27 @@ ElementForces forces_at(const TetReference& ref, const Mat3& F, ElasticLaw law) 
                                  out.f[1], out.f[2], out.f[3], &out.energy);
   }
   return out;
+}
+
+// The ParaView frames' measures of a linear-law element (fem/tet_stress.hpp): under uniaxial strain
+// ε von Mises is 2 μ ε exactly (no O(ε) remainder, unlike neo-Hookean), and the energy density
+// times V₀ is the force kernel's energy, to round-off (1e-12 relative).
+TEST(LinearElasticTet, FrameStressIsHookesLawAndTheKernelsEnergy) {
+  const Vec3 X[4] = {Vec3(0, 0, 0), Vec3(1, 0, 0), Vec3(0, 1, 0), Vec3(0, 0, 1)};
+  const TetReference ref = tet_reference(X[0], X[1], X[2], X[3]);
+  const Lame l = lame_from(kE, kNu);
+  const double eps = 4e-3;
+  Mat3 F = Mat3::Identity();
+  F(0, 0) += eps;
+  const TetStress st =
+      tet_stress(ElasticLaw::linear, ref.dm_inv.data(), l, F * X[0], F * X[1], F * X[2], F * X[3]);
+  EXPECT_NEAR(st.von_mises, 2 * l.mu * eps, 1e-12 * l.mu * eps);
+  Mat3 G;
+  G << 1.02, 0.01, -0.005, 0.003, 0.97, 0.02, -0.01, 0.004, 1.01;
+  const TetStress sg =
+      tet_stress(ElasticLaw::linear, ref.dm_inv.data(), l, G * X[0], G * X[1], G * X[2], G * X[3]);
+  const ElementForces k = forces_at(ref, G, ElasticLaw::linear);
+  EXPECT_NEAR(sg.energy_density * ref.volume, k.energy, 1e-12 * k.energy);
 }
 
 // Both laws have the same tangent at F = I, so their forces differ by O(t²) under F = I + t G:
