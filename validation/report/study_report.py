@@ -48,8 +48,9 @@ SCHEMA = {
                    "first_contact_time", "cpu_seconds", "max_asperity_change_rel", "peak_force_err", "impulse_err",
                    "discretization_error", "convergence_change", "peak_force_err_fem", "impulse_err_fem",
                    "contact_duration_err_fem", "first_contact_shift_fem"]),
-    "classification.csv": (["particle", "model", "placement", "resolution", "lag_rel", "duration_ratio", "skewness_diff",
-                            "class"], ["resolution", "lag_rel", "duration_ratio", "skewness_diff"]),
+    "classification.csv": (["particle", "model", "placement", "resolution", "lag_rel", "first_contact_shift_rel",
+                            "duration_ratio", "skewness_diff", "class"],
+                           ["resolution", "lag_rel", "first_contact_shift_rel", "duration_ratio", "skewness_diff"]),
     "particle_classes.csv": (["particle", "model", "placement", "classes", "coarsest_class"], []),
     "cpu_fit.csv": (["model", "placement", "exponent", "coefficient", "points"], ["exponent", "coefficient"]),
     "candidates.csv": (["placement", "model", "resolution", "element_size_rel", "particles", "peak_force_err_median",
@@ -311,15 +312,21 @@ def force_overlays(study, out, cases, doc):
                       "pressure, rendered from the ParaView frames of a rerun of the study's case")
 
 
-CLASS_MEASURE = {"overlapping": lambda r: -abs(num(r["lag_rel"])), "shifted": lambda r: abs(num(r["lag_rel"])),
-                 "tail": lambda r: num(r["duration_ratio"]), "asymmetric": lambda r: abs(num(r["skewness_diff"]))}
+def onset(r):
+    """The first-contact shift over the reference duration (classification.csv; an older table has only the lag)."""
+    return num(r.get("first_contact_shift_rel", r["lag_rel"]))
+
+
+CLASS_MEASURE = {"overlapping": lambda r: -max(abs(onset(r)), abs(num(r["duration_ratio"]) - 1)),
+                 "shifted": lambda r: abs(onset(r)), "tail": lambda r: num(r["duration_ratio"]),
+                 "short": lambda r: -num(r["duration_ratio"]), "asymmetric": lambda r: abs(num(r["skewness_diff"]))}
 
 
 def class_examples(study, out, cases, classification, doc):
     """One overlay per response class met: the example curve against the converged fem reference's (its finest
     refined level). The example is a curve of that class alone when there is one, else one whose classes include it;
-    among those, the clearest: the largest lag (shifted), duration ratio (tail), skewness difference (asymmetric),
-    or the smallest lag (overlapping)."""
+    among those, the clearest: the largest first-contact shift (shifted), largest or smallest duration ratio (tail,
+    short), skewness difference (asymmetric), or the smallest of shift and duration change (overlapping)."""
     picks = []
     for label, clearest in CLASS_MEASURE.items():
         rows = [r for r in classification if label in r["class"].split("+")]
@@ -339,8 +346,8 @@ def class_examples(study, out, cases, classification, doc):
         t, f = read_force(os.path.join(study, "cases", r["particle"], case_folder(c), "force.csv"))
         ax.plot([1e3 * x for x in t], f, color=MODEL_COLOURS.get(r["model"], "k"), lw=1.0,
                 label=f"{r['model']} {r['resolution']}")
-        ax.set_title(f"{label}: {r['particle']}, {r['model']} {r['resolution']}\n(class {r['class']}; lag "
-                     f"{100 * num(r['lag_rel']):.1f} %, duration x{num(r['duration_ratio']):.2f})", fontsize=7)
+        ax.set_title(f"{label}: {r['particle']}, {r['model']} {r['resolution']}\n(class {r['class']}; onset "
+                     f"{100 * onset(r):+.1f} %, duration x{num(r['duration_ratio']):.2f})", fontsize=7)
         ax.set_xlabel("t (ms)", fontsize=8)
         ax.set_ylabel("|F| (N)", fontsize=8)
         ax.tick_params(labelsize=7)
@@ -797,10 +804,12 @@ def main():
 
     doc.h(2, "Response classes")
     doc.p("Each model's force curve at each resolution (fem: the coarse default) against the converged fem "
-          "reference (the thick grey curve in the overlays below): shifted when the cross-correlation lag "
-          "exceeds 5 % of the reference contact duration; tail when the contact lasts more than 10 % longer; "
-          "asymmetric when the skewness of the force curve (time weighted by force) differs by more than 0.3; "
-          "overlapping otherwise (criteria and reasons in docs/study.md). Classes: every label met at any coarser "
+          "reference (the thick grey curve in the overlays below): shifted when the first contact comes more than "
+          "5 % of the reference contact duration earlier or later (the 5 % tolerance of the first-contact "
+          "guideline); tail when the contact lasts more than 10 % longer, short when more than 10 % shorter (the "
+          "10 % tolerance on contact duration: a short pulse is the stiff response, which the cross-correlation "
+          "lag used before mistook for a shift); asymmetric when the skewness of the force curve (time weighted by "
+          "force) differs by more than 0.3; overlapping otherwise (criteria and reasons in docs/study.md). Classes: every label met at any coarser "
           "resolution; coarsest: the label at the coarsest resolution.")
     doc.table(["particle", "model", "placement", "classes", "coarsest"],
               [[c["particle"], c["model"], c["placement"], c["classes"], c["coarsest_class"]] for c in classes])
