@@ -26,8 +26,8 @@ matplotlib.rcParams["svg.fonttype"] = "path"
 import matplotlib.pyplot as plt  # noqa: E402
 import matplotlib.ticker  # noqa: E402
 
-TABLES = ["cases.csv", "classification.csv", "particle_classes.csv", "cpu_fit.csv", "candidates.csv",
-          "guidelines.csv"]
+TABLES = ["cases.csv", "references.csv", "classification.csv", "particle_classes.csv", "cpu_fit.csv",
+          "candidates.csv", "guidelines.csv"]
 MODEL_COLOURS = {"fem": "tab:blue", "rigid": "tab:orange", "rigid-penalty": "tab:red", "sphere": "tab:green",
                  "sphere-local": "tab:purple"}
 SPHERES = ("sphere", "sphere-local")
@@ -48,6 +48,14 @@ SCHEMA = {
                    "first_contact_time", "cpu_seconds", "max_asperity_change_rel", "peak_force_err", "impulse_err",
                    "discretization_error", "convergence_change", "peak_force_err_fem", "impulse_err_fem",
                    "contact_duration_err_fem", "first_contact_shift_fem"]),
+    "references.csv": (["particle", "placement", "resolution", "levels", "peak_force", "peak_force_order",
+                        "order_observed", "geometry_from", "peak_force_discretization", "peak_force_geometry",
+                        "peak_force_uncertainty", "impulse_uncertainty", "contact_duration_discretization",
+                        "contact_duration_geometry", "contact_duration_uncertainty"],
+                       ["resolution", "levels", "peak_force", "peak_force_order", "peak_force_discretization",
+                        "peak_force_geometry", "peak_force_uncertainty", "impulse_uncertainty",
+                        "contact_duration_discretization", "contact_duration_geometry",
+                        "contact_duration_uncertainty"]),
     "classification.csv": (["particle", "model", "placement", "resolution", "lag_rel", "first_contact_shift_rel",
                             "duration_ratio", "skewness_diff", "class"],
                            ["resolution", "lag_rel", "first_contact_shift_rel", "duration_ratio", "skewness_diff"]),
@@ -708,6 +716,30 @@ def axes_section(doc, cases):
                "converged (< 1 %)"], per)
 
 
+def references_section(doc, references):
+    """The reference of each particle and the two terms of its uncertainty (references.csv)."""
+    if not references:
+        return
+    doc.h(2, "The reference and its uncertainty")
+    doc.p("Per particle: the reference (the limit of the fem sequence at the finest resolution), the order its peak "
+          "force was extrapolated at (observed from three refined levels, or the assumed bracket's middle), and the "
+          "two terms of its uncertainty, added in quadrature: discretization (the extrapolation's estimated error) "
+          "and geometry (the change of the limit from the next coarser resolution that was refined: is the finest "
+          "geometry fine enough?; '-' where none was). The larger term is the one to refine.")
+    rows = []
+    for r in references:
+        d, g = num(r["peak_force_discretization"]), num(r["peak_force_geometry"])
+        dominant = "-" if math.isnan(d) else "discretization" if math.isnan(g) or d >= g else "geometry"
+        rows.append([r["particle"], r["placement"], r["resolution"], fmt(r["peak_force"]),
+                     ("observed " if r["order_observed"] == "true" else "assumed ") + fmt(r["peak_force_order"], 3),
+                     pct(r["peak_force_discretization"]),
+                     (pct(r["peak_force_geometry"]) + f" (from {r['geometry_from']})") if r["geometry_from"] else "-",
+                     pct(r["peak_force_uncertainty"]), dominant, pct(r["contact_duration_uncertainty"]),
+                     pct(r["impulse_uncertainty"])])
+    doc.table(["particle", "placement", "N", "peak force (N)", "order (peak)", "discretization", "geometry",
+               "uncertainty (peak)", "larger term", "uncertainty (duration)", "uncertainty (impulse)"], rows)
+
+
 def main():
     ap = argparse.ArgumentParser(description=__doc__)
     ap.add_argument("study")
@@ -741,6 +773,7 @@ def main():
     doc.h(1, f"Particle-geometry study: {summary['study']}")
     answer_section(doc, guidelines, summary["published"])
     axes_section(doc, cases)
+    references_section(doc, read_csv(os.path.join(a.study, "references.csv")))
     doc.p(f"{summary['particles']} particles x resolutions {summary['resolutions']} x models "
           f"{', '.join(summary['models'])} x placements {', '.join(summary['placements'])}: {summary['cases']} cases, "
           f"{summary['done']} done, {summary['failed']} failed. Each particle is launched straight down onto a fixed "
