@@ -36,32 +36,53 @@ std::vector<std::pair<int, int>> brute_force(const Eigen::Matrix3Xd& x,
   return brute;
 }
 
-TEST(BroadPhase, MatchesBruteForce) {
-  // Two balls touching plus a fixed block under them, randomly perturbed.
-  const TetMesh a = ball_mesh(1.0, 3), b = ball_mesh(1.0, 3),
-                c = box_mesh(Vec3(-3, -3, -2), Vec3(3, 3, -0.9), 2, 2, 1);
-  Eigen::Matrix3Xd x(3, a.nodes.cols() + b.nodes.cols() + c.nodes.cols());
-  x << a.nodes, (b.nodes.colwise() + Vec3(1.9, 0.2, 0.1)), c.nodes;
-  std::mt19937 rng(7);
-  std::uniform_real_distribution<double> u(-0.02, 0.02);
-  for (Eigen::Index i = 0; i < x.size(); ++i) x.data()[i] += u(rng);
-  const int na = static_cast<int>(a.nodes.cols()), nb = static_cast<int>(b.nodes.cols());
-  Eigen::Matrix4Xi tets(4, a.tets.cols() + b.tets.cols() + c.tets.cols());
-  tets << a.tets, (b.tets.array() + na).matrix(), (c.tets.array() + na + nb).matrix();
+// The bodies' meshes as one world: nodes and tetrahedra concatenated, each tetrahedron's body.
+struct Bodies {
+  Eigen::Matrix3Xd x;
+  Eigen::Matrix4Xi tets;
   std::vector<int> body;
-  for (Eigen::Index k = 0; k < a.tets.cols(); ++k) body.push_back(0);
-  for (Eigen::Index k = 0; k < b.tets.cols(); ++k) body.push_back(1);
-  for (Eigen::Index k = 0; k < c.tets.cols(); ++k) body.push_back(2);
-  const std::vector<std::uint8_t> fixed{0, 0, 1};
+};
+
+Bodies assemble(const std::vector<TetMesh>& meshes) {
+  Eigen::Index nn = 0, nt = 0;
+  for (const TetMesh& m : meshes) nn += m.nodes.cols(), nt += m.tets.cols();
+  Bodies w{Eigen::Matrix3Xd(3, nn), Eigen::Matrix4Xi(4, nt), {}};
+  Eigen::Index node = 0, tet = 0;
+  for (std::size_t b = 0; b < meshes.size(); ++b) {
+    const TetMesh& m = meshes[b];
+    w.x.middleCols(node, m.nodes.cols()) = m.nodes;
+    w.tets.middleCols(tet, m.tets.cols()) = (m.tets.array() + static_cast<int>(node)).matrix();
+    for (Eigen::Index k = 0; k < m.tets.cols(); ++k) w.body.push_back(static_cast<int>(b));
+    node += m.nodes.cols(), tet += m.tets.cols();
+  }
+  return w;
+}
+
+// The sort-and-sweep list equals the brute-force one, pair by pair and in the same order; at
+// least `least` pairs, so that the comparison is not between two empty lists.
+void expect_matches_brute_force(const Bodies& w, const std::vector<std::uint8_t>& fixed,
+                                std::size_t least) {
   const double margin = 0.05;
-  const auto pairs = candidate_pairs(x, tets, body, fixed, margin);
-  const auto brute = brute_force(x, tets, body, fixed, margin);
-  ASSERT_GT(brute.size(), 10u);
+  const auto pairs = candidate_pairs(w.x, w.tets, w.body, fixed, margin);
+  const auto brute = brute_force(w.x, w.tets, w.body, fixed, margin);
+  ASSERT_GT(brute.size(), least);
   ASSERT_EQ(pairs.size(), brute.size());
   for (std::size_t k = 0; k < brute.size(); ++k) {
     EXPECT_EQ(pairs[k].a, brute[k].first);
     EXPECT_EQ(pairs[k].b, brute[k].second);
   }
+}
+
+TEST(BroadPhase, MatchesBruteForce) {
+  // Two balls touching plus a fixed block under them, randomly perturbed.
+  TetMesh b = ball_mesh(1.0, 3);
+  b.nodes.colwise() += Vec3(1.9, 0.2, 0.1);
+  Bodies w =
+      assemble({ball_mesh(1.0, 3), b, box_mesh(Vec3(-3, -3, -2), Vec3(3, 3, -0.9), 2, 2, 1)});
+  std::mt19937 rng(7);
+  std::uniform_real_distribution<double> u(-0.02, 0.02);
+  for (Eigen::Index i = 0; i < w.x.size(); ++i) w.x.data()[i] += u(rng);
+  expect_matches_brute_force(w, {0, 0, 1}, 10u);
 }
 
 // Twelve bodies: ten balls scattered so that some touch (in every direction, so the bodies'
@@ -82,29 +103,9 @@ TEST(BroadPhase, ManyBodiesMatchBruteForce) {
   meshes.push_back(box_mesh(Vec3(0, -3, -2), Vec3(3, 3, -0.9), 2, 2, 1));
   fixed.push_back(1);
   fixed.push_back(1);
-  Eigen::Index nn = 0, nt = 0;
-  for (const TetMesh& m : meshes) nn += m.nodes.cols(), nt += m.tets.cols();
-  Eigen::Matrix3Xd x(3, nn);
-  Eigen::Matrix4Xi tets(4, nt);
-  std::vector<int> body;
-  Eigen::Index node = 0, tet = 0;
-  for (std::size_t b = 0; b < meshes.size(); ++b) {
-    const TetMesh& m = meshes[b];
-    x.middleCols(node, m.nodes.cols()) = m.nodes;
-    tets.middleCols(tet, m.tets.cols()) = (m.tets.array() + static_cast<int>(node)).matrix();
-    for (Eigen::Index k = 0; k < m.tets.cols(); ++k) body.push_back(static_cast<int>(b));
-    node += m.nodes.cols(), tet += m.tets.cols();
-  }
-  for (Eigen::Index i = 0; i < x.size(); ++i) x.data()[i] += jitter(rng);
-  const double margin = 0.05;
-  const auto pairs = candidate_pairs(x, tets, body, fixed, margin);
-  const auto brute = brute_force(x, tets, body, fixed, margin);
-  ASSERT_GT(brute.size(), 100u);
-  ASSERT_EQ(pairs.size(), brute.size());
-  for (std::size_t k = 0; k < brute.size(); ++k) {
-    EXPECT_EQ(pairs[k].a, brute[k].first);
-    EXPECT_EQ(pairs[k].b, brute[k].second);
-  }
+  Bodies w = assemble(meshes);
+  for (Eigen::Index i = 0; i < w.x.size(); ++i) w.x.data()[i] += jitter(rng);
+  expect_matches_brute_force(w, fixed, 100u);
 }
 
 }  // namespace
