@@ -67,10 +67,14 @@ TEST(RefinedSphere, ChordErrorFallsAtSecondOrder) {
 TEST(RefinedSphere, TheIcosphereLowestVertexIsTheSouthPole) {
   // Frequency 8 is even, and the z axis passes through the midpoints of two of the icosahedron's
   // edges ((0, ±1, −φ)), so the lowest vertex is the pole: the Hertz scenes' focus (0, 0, −R) and
-  // the study's (the lowest vertex) are the same point up to round-off.
+  // the study's (the lowest vertex) are the same point, to the last bit (so both builders that
+  // refined_sphere replaced made the same mesh from the same arguments).
   SurfaceMesh ico = geodesic_sphere(8);
   ico.vertices *= kR;
-  EXPECT_LT((lowest_vertex(ico) - Vec3(0, 0, -kR)).norm(), 1e-15);
+  const Vec3 low = lowest_vertex(ico);
+  EXPECT_EQ(low.x(), 0.0);
+  EXPECT_EQ(low.y(), 0.0);
+  EXPECT_EQ(low.z(), -kR);
 }
 
 }  // namespace
