@@ -732,7 +732,8 @@ def references_section(doc, references, growth):
         d, g = num(r["peak_force_discretization"]), num(r["peak_force_geometry"])
         dominant = "-" if math.isnan(d) else "discretization" if math.isnan(g) or d >= g else "geometry"
         rows.append([r["particle"], r["placement"], r["resolution"], fmt(r["peak_force"]),
-                     ("observed " if r["order_observed"] == "true" else "assumed ") + fmt(r["peak_force_order"], 3),
+                     (("observed " if r["order_observed"] == "true" else "assumed ") + fmt(r["peak_force_order"], 3))
+                     if r["peak_force_order"] else "-",
                      pct(r["peak_force_discretization"]),
                      (pct(r["peak_force_geometry"]) + f" (from {r['geometry_from']})") if r["geometry_from"] else "-",
                      pct(r["peak_force_uncertainty"]), dominant, pct(r["contact_duration_uncertainty"]),
@@ -789,7 +790,7 @@ def main():
           "reference (err_fem): the limit of the fem refinement sequence (refined at the strike point, extrapolated "
           "as above) at the finest resolution, same placement (docs/study.md). The sphere, rigid and sphere-local "
           "models strike a rigid block, as the fem does. "
-          "Tables: cases, classification, particle_classes, cpu_fit, candidates, guidelines, as CSV and as Markdown "
+          "Tables: cases, references, classification, particle_classes, cpu_fit, candidates, guidelines, as CSV and as Markdown "
           "beside this file; every chart as PNG and SVG.")
 
     doc.h(2, "Cost")
