@@ -48,6 +48,7 @@ void BM_HertzLevel(benchmark::State& state, Setup setup, double s, double speed,
     state.counters["mesh_cpu_s"] = all - l.cpu;
     state.counters["evaluations"] = l.evaluations;
     state.counters["contact_share"] = l.contact_share;
+    state.counters["max_rotation"] = l.max_rotation;
   }
 }
 
@@ -80,7 +81,8 @@ void register_levels() {
           // independent of α at the converged level) and at half the step (dt 0.25 × the
           // predicted critical step); and a/R = 0.15 also on the contact zone of a/R = 0.107
           // (not scaled up with a: a/h 3.8 instead of 2.7 at s = 1), to see what the contact
-          // zone's resolution holds. The grading column of the table names the variant.
+          // zone's resolution holds. The grading column of the table names the
+          // variant.
           struct Named {
             const char* grading;
             fdem::hertz::Variant v;
@@ -103,6 +105,23 @@ void register_levels() {
           }
         }
       }
+    }
+  }
+  // graded_linear: the block's graded levels with the small-strain linear law (the material of
+  // Hertz's theory and of the finite-sphere reference), to part the neo-Hookean material's own
+  // effect from the discretization's; at a/R = 0.107 also s = 1/2 (about 0.4 M tetrahedra,
+  // 8–10 min of CPU), the level past the neo-Hookean sequence's last.
+  for (const double a : {0.107, 0.15}) {
+    const double speed = a == 0.107 ? fdem::hertz::kSpeed : fdem::hertz::speed_for(a, m);
+    for (const double s : {2.0, r, 1.0, 1 / r, 0.5}) {
+      if (s == 0.5 && a != 0.107) continue;
+      char name[96];
+      std::snprintf(name, sizeof name, "HertzBlock/graded_linear/aR:%.3f/s:%.3f", a, s);
+      benchmark::RegisterBenchmark(name, BM_HertzLevel, Setup::block, s, speed, true,
+                                   fdem::hertz::Variant{.law = ElasticLaw::linear})
+          ->Iterations(1)
+          ->UseManualTime()
+          ->Unit(benchmark::kSecond);
     }
   }
 }

@@ -2,17 +2,44 @@
 #pragma once
 
 #include <algorithm>
+#include <array>
+#include <optional>
 #include <string>
+#include <string_view>
+#include <utility>
 
 namespace asperity {
 
+// The elastic law of a deformable (FEM) body's tetrahedra: compressible neo-Hookean
+// (fem/neo_hookean_tet.hpp, frame-indifferent, the default) or small-strain linear
+// (fem/linear_elastic_tet.hpp: for validation against linear-elastic solutions only; a rotated
+// element carries spurious stress, and a run stops past fem::kLinearMaxRotation).
+enum class ElasticLaw { neo_hookean, linear };
+inline constexpr std::array<std::pair<ElasticLaw, std::string_view>, 2> kElasticLawNames{{
+    {ElasticLaw::neo_hookean, "neo-hookean"},
+    {ElasticLaw::linear, "linear"},
+}};
+inline std::string elastic_law_name(ElasticLaw law) {
+  for (const auto& [l, name] : kElasticLawNames) {
+    if (l == law) return std::string(name);
+  }
+  return "?";
+}
+inline std::optional<ElasticLaw> elastic_law_from_name(std::string_view name) {
+  for (const auto& [l, n] : kElasticLawNames) {
+    if (n == name) return l;
+  }
+  return std::nullopt;
+}
+
 struct Material {
   std::string name;
-  double density = 0;      // kg/m³
-  double young = 0;        // Pa
-  double poisson = 0;      // -
-  double friction = 0;     // Coulomb coefficient, -
-  double restitution = 1;  // normal coefficient of restitution, (0, 1]
+  double density = 0;                        // kg/m³
+  double young = 0;                          // Pa
+  double poisson = 0;                        // -
+  double friction = 0;                       // Coulomb coefficient, -
+  double restitution = 1;                    // normal coefficient of restitution, (0, 1]
+  ElasticLaw law = ElasticLaw::neo_hookean;  // deformable bodies' tetrahedra only
 };
 
 inline double shear_modulus(const Material& m) {

@@ -219,6 +219,16 @@ void internal_forces(World& w, double dt) {
         << " inverted (J = " << r.inverted_j << ") at t = " << w.time << " s";
       w.failure = s.str();
     }
+    w.max_rotation = std::max(w.max_rotation, r.max_rotation);
+    if (r.max_rotation > fem::kLinearMaxRotation && w.failure.empty()) {
+      const int body = w.node_body[e.tets(0, r.rotated)];
+      std::ostringstream s;
+      s << "body \"" << w.bodies[body].name << "\" element " << r.rotated << " rotated by "
+        << std::asin(std::min(1.0, r.max_rotation)) << " rad at t = " << w.time
+        << " s, past the linear law's " << std::asin(fem::kLinearMaxRotation)
+        << " rad (it is not frame-indifferent: use \"neo-hookean\" for bodies that rotate)";
+      w.failure = s.str();
+    }
   }
   if (w.want_energy) w.elastic_energy = elastic;
 }
@@ -488,6 +498,9 @@ Body add_body(World& w, const BodyDef& d, int bi, int offset, const std::string&
   // too: constraining nodes to move rigidly only lowers the highest frequency).
   fem::TetElements e = fem::make_tet_elements(w.x, tets, d.material.young, d.material.poisson,
                                               d.material.density, 0.0, what);
+  // The law is the deformable body's; a rigid or fixed body's elements only give masses and steps,
+  // which are the same for both laws (the linear law's stiffness is the neo-Hookean one at F = I).
+  if (d.kind == BodyKind::deformable) e.law = d.material.law;
   if (d.kind == BodyKind::deformable && d.damping_ratio > 0) {
     // ξ = β ω / 2 for stiffness-proportional damping, at the body's highest element frequency.
     e.damping = 2 * d.damping_ratio / fem::element_critical_step(e).omega_max;

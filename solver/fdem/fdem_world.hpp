@@ -201,6 +201,9 @@ struct World {
   double dissipated = 0;         // J, accumulated: viscous damping and friction
   long contact_evaluations = 0;  // candidate pairs run through the kernel, accumulated
   long contacts_touching = 0;    // of those, in contact
+  // The largest element rotation of the linear-law bodies so far (fem::InternalForceResult::
+  // max_rotation, sin θ); past fem::kLinearMaxRotation the world stops (failure).
+  double max_rotation = 0;
 
   // This step's contact output per body (core/body_contacts.hpp): force, its potential (normal)
   // part, and the deepest overlap among each body's touching pairs.
@@ -215,7 +218,8 @@ struct World {
   double penetration = 0;
   int penetration_body_a = -1, penetration_body_b = -1;
 
-  // Set when an element inverted (J ≤ 0): body, element, J and time; the world stops there.
+  // Set when an element inverted (J ≤ 0), or a linear-law element rotated past
+  // fem::kLinearMaxRotation: body, element, value and time; the world stops there.
   std::string failure;
 
   double time = 0;

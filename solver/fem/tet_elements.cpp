@@ -81,15 +81,16 @@ double add_viscous_forces(const double* b, double volume, Lame lame, double beta
 // element) stays in L1.
 constexpr int kBatch = 32;
 
-// The element loop, batch by batch: gather the batch's edges and Dm⁻¹ into structure of arrays,
-// run the kernel's stages (fem/neo_hookean_tet.hpp) over it as plain loops the compiler
+// The element loop, batch by batch, for one law (chosen once per body): gather the batch's edges
+// and Dm⁻¹ into structure of arrays, run the kernel's stages (fem/neo_hookean_tet.hpp, or
+// fem/linear_elastic_tet.hpp, which has no logarithm) over it as plain loops the compiler
 // vectorizes, the logarithms in between (a library call, one element at a time), then add the
 // forces to the nodes in element order. Each element's arithmetic and the order of the additions
 // into f and the energy are those of neo_hookean_tet_forces called element by element, so the
 // result is the same to the bit (tests/fem/test_neo_hookean_tet.cpp); only the schedule differs:
 // 1.4–1.6× faster on one core (benchmarks/fem_bench.cpp, BM_InternalForces against
 // BM_InternalForcesPerElement).
-template <bool kEnergy>
+template <bool kEnergy, ElasticLaw kLaw>
 InternalForceResult loop(const TetElements& e, const Eigen::Matrix3Xd& x, const Eigen::Matrix3Xd& v,
                          Eigen::Matrix3Xd& f) {
   InternalForceResult out;
@@ -99,7 +100,7 @@ InternalForceResult loop(const TetElements& e, const Eigen::Matrix3Xd& x, const 
   const int n = e.size();
   double energy = 0;
   alignas(64) double d[9 * kBatch], b[9 * kBatch], F[9 * kBatch], C[9 * kBatch], h[9 * kBatch];
-  alignas(64) double J[kBatch], ln_j[kBatch], w[kBatch];
+  alignas(64) double J[kBatch], ln_j[kBatch], w[kBatch], rotation[kBatch];
   for (int k0 = 0; k0 < n; k0 += kBatch) {
     const int m = std::min(kBatch, n - k0);
     for (int i = 0; i < m; ++i) {
@@ -115,18 +116,28 @@ InternalForceResult loop(const TetElements& e, const Eigen::Matrix3Xd& x, const 
       for (int c = 0; c < 9; ++c) b[c * kBatch + i] = bk[c];
     }
     for (int i = 0; i < m; ++i) J[i] = tet_deformation<kBatch>(d + i, b + i, F + i, C + i);
-    // An inverted element (J ≤ 0) gets J = 1 for the arithmetic and adds nothing below.
-    for (int i = 0; i < m; ++i) ln_j[i] = J[i] > 0 ? std::log(J[i]) : 0.0;
     const double* vol = &e.volume[static_cast<std::size_t>(k0)];
-    for (int i = 0; i < m; ++i) {
-      tet_nodal_forces<kBatch>(b + i, vol[i], e.lame, J[i] > 0 ? J[i] : 1.0, ln_j[i], F + i, C + i,
-                               h + i);
-      if constexpr (kEnergy) w[i] = tet_strain_energy<kBatch>(vol[i], e.lame, ln_j[i], F + i);
+    if constexpr (kLaw == ElasticLaw::neo_hookean) {
+      // An inverted element (J ≤ 0) gets J = 1 for the arithmetic and adds nothing below.
+      for (int i = 0; i < m; ++i) ln_j[i] = J[i] > 0 ? std::log(J[i]) : 0.0;
+      for (int i = 0; i < m; ++i) {
+        tet_nodal_forces<kBatch>(b + i, vol[i], e.lame, J[i] > 0 ? J[i] : 1.0, ln_j[i], F + i,
+                                 C + i, h + i);
+        if constexpr (kEnergy) w[i] = tet_strain_energy<kBatch>(vol[i], e.lame, ln_j[i], F + i);
+      }
+    } else {
+      for (int i = 0; i < m; ++i) {
+        rotation[i] = linear_tet_nodal_forces<kBatch>(b + i, vol[i], e.lame, F + i, h + i);
+        if constexpr (kEnergy) w[i] = linear_tet_strain_energy<kBatch>(vol[i], e.lame, F + i);
+      }
     }
     for (int i = 0; i < m; ++i) {
       if (!(J[i] > 0)) {
         if (out.inverted < 0) out.inverted = k0 + i, out.inverted_j = J[i];
         continue;
+      }
+      if constexpr (kLaw == ElasticLaw::linear) {
+        if (rotation[i] > out.max_rotation) out.max_rotation = rotation[i], out.rotated = k0 + i;
       }
       const int* tk = t + 4 * (k0 + i);
       tet_scatter<kBatch>(h + i, fs + 3 * tk[0], fs + 3 * tk[1], fs + 3 * tk[2], fs + 3 * tk[3]);
@@ -164,7 +175,12 @@ InternalForceResult loop(const TetElements& e, const Eigen::Matrix3Xd& x, const 
 InternalForceResult
 add_internal_forces(const TetElements& e, const Eigen::Matrix3Xd& x, const Eigen::Matrix3Xd& v,
                     Eigen::Matrix3Xd& f, bool with_energy) {
-  return with_energy ? loop<true>(e, x, v, f) : loop<false>(e, x, v, f);
+  if (e.law == ElasticLaw::linear) {
+    return with_energy ? loop<true, ElasticLaw::linear>(e, x, v, f)
+                       : loop<false, ElasticLaw::linear>(e, x, v, f);
+  }
+  return with_energy ? loop<true, ElasticLaw::neo_hookean>(e, x, v, f)
+                     : loop<false, ElasticLaw::neo_hookean>(e, x, v, f);
 }
 
 namespace {

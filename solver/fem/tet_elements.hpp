@@ -7,6 +7,8 @@
 
 #include <Eigen/Core>
 
+#include "core/material.hpp"
+#include "fem/linear_elastic_tet.hpp"
 #include "fem/neo_hookean_tet.hpp"
 
 namespace asperity::fem {
@@ -17,7 +19,8 @@ struct TetElements {
   std::vector<double> dm_inv;  // 9 per element, Dm⁻¹ column-major
   std::vector<double> volume;  // m³, V₀
   Lame lame;
-  double density = 0;  // kg/m³
+  ElasticLaw law = ElasticLaw::neo_hookean;  // chosen once per body: the loop is templated on it
+  double density = 0;                        // kg/m³
   // Kelvin–Voigt viscosity as a fraction of the elastic moduli, s (0: off, the default):
   // σ_v = β (λ tr D I + 2 μ D), D = sym(Ḟ F⁻¹), the rate of deformation — objective, so a
   // rigid rotation dissipates nothing. Modal damping ratio ξ = β ω / 2 (stiffness-proportional
@@ -42,7 +45,18 @@ struct InternalForceResult {
   double damping_power = 0;  // Σ of the viscous forces' power, W (≤ 0)
   int inverted = -1;         // first element with J ≤ 0, or -1
   double inverted_j = 0;     // its J
+  // Linear law only (ElasticLaw::linear): the largest element rotation |axial(skew F)| (sin θ of
+  // a rigid rotation by θ), and its element (-1 for neo-Hookean elements, which are objective).
+  double max_rotation = 0;
+  int rotated = -1;
 };
+
+// The largest element rotation the linear law may see before a run stops (exit 3). A rigid
+// rotation by θ gives the small strain (cos θ − 1) ≈ −θ²/2 across the rotation axis, a spurious
+// stress of E θ²/2. The bound sits above the rotations a linear-elastic validation case makes
+// (the Hertz sphere at a/R = 0.15: the contact edge's surface turns by about a/R; measured
+// in tests/fem/test_linear_elastic_tet.cpp) and below those of a tumbling body.
+inline constexpr double kLinearMaxRotation = 0.25;  // rad (sin θ), spurious strain ≤ 3.2 %
 
 // f += internal (elastic, and viscous when damping > 0 using velocities v) nodal forces.
 InternalForceResult add_internal_forces(const TetElements& e, const Eigen::Matrix3Xd& x,

@@ -1,9 +1,11 @@
-// Stress measures of one compressible neo-Hookean tetrahedron (fem/neo_hookean_tet.hpp) from its
-// current node positions: what a picture of a deformed body is coloured by.
+// Stress measures of one tetrahedron, compressible neo-Hookean (fem/neo_hookean_tet.hpp) or
+// small-strain linear (fem/linear_elastic_tet.hpp), from its current node positions: what a
+// picture of a deformed body is coloured by.
 #pragma once
 
 #include <cmath>
 
+#include "core/material.hpp"
 #include "core/vec.hpp"
 #include "fem/neo_hookean_tet.hpp"
 
@@ -35,6 +37,32 @@ inline TetStress neo_hookean_tet_stress(const double* dm_inv, Lame lame, const V
   out.energy_density =
       0.5 * lame.mu * (b.trace() - 3) - lame.mu * ln_j + 0.5 * lame.lambda * ln_j * ln_j;
   return out;
+}
+
+// The same for the small-strain linear law: σ = λ tr ε I + 2 μ ε, ε = sym(F − I), and
+// Ψ = λ/2 (tr ε)² + μ ε:ε.
+inline TetStress linear_tet_stress(const double* dm_inv, Lame lame, const Vec3& x0, const Vec3& x1,
+                                   const Vec3& x2, const Vec3& x3) {
+  Mat3 ds;
+  ds << x1 - x0, x2 - x0, x3 - x0;
+  const Mat3 f = ds * Eigen::Map<const Mat3>(dm_inv);
+  TetStress out;
+  out.j = f.determinant();
+  if (!(out.j > 0)) return out;
+  const Mat3 eps = 0.5 * (f + f.transpose()) - Mat3::Identity();
+  const Mat3 sigma = lame.lambda * eps.trace() * Mat3::Identity() + 2 * lame.mu * eps;
+  const Mat3 s = sigma - sigma.trace() / 3 * Mat3::Identity();
+  out.von_mises = std::sqrt(1.5 * s.cwiseProduct(s).sum());
+  out.energy_density =
+      0.5 * lame.lambda * eps.trace() * eps.trace() + lame.mu * eps.cwiseProduct(eps).sum();
+  return out;
+}
+
+// The body's own law.
+inline TetStress tet_stress(ElasticLaw law, const double* dm_inv, Lame lame, const Vec3& x0,
+                            const Vec3& x1, const Vec3& x2, const Vec3& x3) {
+  return law == ElasticLaw::linear ? linear_tet_stress(dm_inv, lame, x0, x1, x2, x3)
+                                   : neo_hookean_tet_stress(dm_inv, lame, x0, x1, x2, x3);
 }
 
 }  // namespace asperity::fem

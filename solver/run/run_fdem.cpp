@@ -386,6 +386,12 @@ RunResult run_fdem(const scene::SceneDef& s, const RunOptions& options) {
     j["kv"] = w.kv;
   }
   j["friction"] = w.friction;
+  // The recorded body's elastic law when it is deformable (docs/physics.md: the linear law is for
+  // validation against linear-elastic solutions only).
+  const fdem::Body& recorded = w.bodies[built.record];
+  j["material_law"] = recorded.kind == fdem::BodyKind::deformable
+                          ? J(elastic_law_name(recorded.material.law))
+                          : J();
   write_run(j, w.steps, w.time, loop.ended_by_separation, loop.cpu_seconds, loop.wall_seconds);
   j["profile"] = profile_json(w.profile, loop.seconds_per_tick, true);
   j["neighbour_rebuilds"] = w.rebuilds;

@@ -29,6 +29,8 @@ inline constexpr std::string_view kRun[] = {
     // the contact's parameters as used
     "penalty", "penalty_alpha", "penalty_alpha_asked", "max_contact_factor", "penalty_scale_min",
     "added_mass_fraction", "kv", "friction",
+    // the deformable recorded body's elastic law
+    "material_law",
     // the run's length and cost
     "steps", "simulated_time", "ended_by", "cpu_seconds", "wall_seconds", "neighbour_rebuilds",
     "contact_updates", "contact_evaluations", "contacts_touching", "surface_tets"};

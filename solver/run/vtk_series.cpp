@@ -203,10 +203,10 @@ std::string FdemSeries::document(const fdem::World& w, const State& s) const {
     const fem::TetElements& e = w.elements[static_cast<std::size_t>(
         w.bodies[static_cast<std::size_t>(tet_body_[k])].elements)];
     const auto c = static_cast<Eigen::Index>(k);
-    const fem::TetStress st = fem::neo_hookean_tet_stress(
-        &e.dm_inv[9 * static_cast<std::size_t>(tet_element_[k])], e.lame,
-        s.x.col(moving_tets_(0, c)), s.x.col(moving_tets_(1, c)), s.x.col(moving_tets_(2, c)),
-        s.x.col(moving_tets_(3, c)));
+    const fem::TetStress st =
+        fem::tet_stress(e.law, &e.dm_inv[9 * static_cast<std::size_t>(tet_element_[k])], e.lame,
+                        s.x.col(moving_tets_(0, c)), s.x.col(moving_tets_(1, c)),
+                        s.x.col(moving_tets_(2, c)), s.x.col(moving_tets_(3, c)));
     von_mises[k] = st.von_mises;
     energy[k] = st.energy_density;
   }

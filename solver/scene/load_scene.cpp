@@ -26,6 +26,19 @@ Material parse_material(const JsonReader& m, const std::string& name) {
   out.poisson = m.in_range("poisson", -1.0, 0.5, true, true);
   out.friction = m.has("friction") ? m.in_range("friction", 0.0, 1e3, false, false) : 0.0;
   out.restitution = m.has("restitution") ? m.in_range("restitution", 0.0, 1.0, true, false) : 1.0;
+  if (m.has("law")) {
+    const std::string law = m.string("law");
+    if (const std::optional<ElasticLaw> known = elastic_law_from_name(law)) {
+      out.law = *known;
+    } else {
+      std::vector<std::string_view> names;
+      for (const auto& [l, n] : kElasticLawNames) names.push_back(n);
+      const std::string near = io::closest_key(law, names);
+      m.fail("law", "unknown elastic law " + io::echo(m.value().at("law")) +
+                        (near.empty() ? "" : " (did you mean \"" + near + "\"?)") +
+                        "; expected neo-hookean or linear");
+    }
+  }
   return out;
 }
 

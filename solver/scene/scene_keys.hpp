@@ -20,8 +20,8 @@ inline constexpr std::string_view kScene[] = {"name",
                                               "contact",
                                               "record",
                                               "output"};
-inline constexpr std::string_view kMaterial[] = {"density", "young", "poisson", "friction",
-                                                 "restitution"};
+inline constexpr std::string_view kMaterial[] = {"density",  "young",       "poisson",
+                                                 "friction", "restitution", "law"};
 inline constexpr std::string_view kBody[] = {
     "name",     "material",         "shape", "model",        "position",
     "velocity", "angular_velocity", "fixed", "damping_ratio"};

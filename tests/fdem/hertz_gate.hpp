@@ -24,11 +24,12 @@ struct Sequence {
 };
 
 // Three whole-field levels (s falling by √2) at the block approach speed `speed`, printed as
-// the table of reports/fem/hertz_convergence.md has them.
-inline Sequence sequence(Setup setup, double speed, std::initializer_list<double> scales) {
+// the table of reports/fem/hertz_convergence.md has them; `v` the variant (the elastic law).
+inline Sequence sequence(Setup setup, double speed, std::initializer_list<double> scales,
+                         const Variant& v = {}) {
   Sequence q;
   for (const double s : scales) {
-    const Level l = hertz::run_level(setup, s, speed);
+    const Level l = hertz::run_level(setup, s, speed, true, v);
     EXPECT_TRUE(l.failure.empty()) << l.failure;
     std::printf(
         "%s a/R %.3f  s %.3f  h %.2f mm  tets %6ld  run %.1f s CPU  peak %+.4f (filtered %+.4f)  "

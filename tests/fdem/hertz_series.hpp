@@ -102,6 +102,7 @@ struct Level {
   double cpu = 0;            // s, std::clock of the run (not the meshing)
   double evaluations = 0;    // contact pairs through the kernel per step
   double contact_share = 0;  // share of the profiled step time in broad and narrow phase
+  double max_rotation = 0;   // linear law: the largest element rotation (sin θ; 0 neo-Hookean)
   std::string failure;
 };
 
@@ -109,10 +110,13 @@ struct Level {
 // at the converged level), the step as a fraction of the predicted critical step, and the contact
 // zone's scale (> 0 replaces contact_scale(speed) for the mesh: the a/R = 0.15 sequence on a finer
 // contact zone, reports/fem/hertz_convergence.md).
+// The elastic law: neo-Hookean (the default) or small-strain linear, the law of Hertz's theory and
+// of the finite-sphere reference (the material's own effect apart from the discretization's).
 struct Variant {
   double alpha = 10;
   double dt_safety = 0.5;
   double zone_scale = 0;
+  ElasticLaw law = ElasticLaw::neo_hookean;
 };
 
 // One impact at refinement s, block approach speed `speed`, α = 10, dt = 0.5 × the predicted
@@ -121,7 +125,8 @@ struct Variant {
 // reports/fem/hertz_convergence.md), the duration the time with a non-zero contact force on body 0.
 inline Level run_level(Setup setup, double s, double speed = kSpeed, bool graded = true,
                        const Variant& v = {}) {
-  const Material m = scenes::rubbery();
+  Material m = scenes::rubbery();
+  m.law = v.law;
   const double k = v.zone_scale > 0 ? v.zone_scale : contact_scale(speed);
   const TetMesh ball = level_mesh(s, k, graded);
   const scenes::Hertz ref = sphere_on_block_hertz(ball, m, speed);
@@ -184,6 +189,7 @@ inline Level run_level(Setup setup, double s, double speed = kSpeed, bool graded
           .evaluations = static_cast<double>(w.contact_evaluations) / static_cast<double>(w.steps),
           .contact_share = static_cast<double>(w.profile.contact + w.profile.broad_phase) /
                            static_cast<double>(w.profile.total()),
+          .max_rotation = w.max_rotation,
           .failure = w.failure};
 }
 

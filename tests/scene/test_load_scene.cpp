@@ -105,6 +105,23 @@ TEST(LoadScene, RestitutionOutsideItsRangeIsRefused) {
             std::string::npos);
 }
 
+// materials.NAME.law: "neo-hookean" (the default) or "linear"; anything else (a typo, a number) is
+// refused naming the key and the value, with a suggestion for a near miss.
+TEST(LoadScene, ElasticLawIsOneOfTheKnownNames) {
+  EXPECT_EQ(error_of("law-ok",
+                     edit("\"restitution\": 0.9}", "\"restitution\": 0.9, \"law\": \"linear\"}")),
+            "");
+  const std::string typo =
+      error_of("law", edit("\"restitution\": 0.9}", "\"restitution\": 0.9, \"law\": \"linaer\"}"));
+  EXPECT_NE(typo.find("materials.glass.law: unknown elastic law \"linaer\" (did you mean "
+                      "\"linear\"?); expected neo-hookean or linear"),
+            std::string::npos)
+      << typo;
+  const std::string number =
+      error_of("law-number", edit("\"restitution\": 0.9}", "\"restitution\": 0.9, \"law\": 1}"));
+  EXPECT_NE(number.find("materials.glass.law"), std::string::npos) << number;
+}
+
 TEST(LoadScene, UnknownMaterialAndRecordedBodyAreNamed) {
   EXPECT_NE(error_of("mat", edit("\"material\": \"glass\"", "\"material\": \"gold\""))
                 .find("no material named \"gold\""),
