@@ -10,7 +10,7 @@
 
 #include "fdem_scenes.hpp"
 #include "geometry/element_size.hpp"
-#include "geometry/geodesic_sphere.hpp"
+#include "geometry/refined_sphere.hpp"
 #include "geometry/tetrahedralize.hpp"
 
 namespace asperity::fdem::hertz {
@@ -33,17 +33,7 @@ inline constexpr double kGrowth = 0.3;           // element size growth away fro
 // sagitta stays 0.7 % of the approach and the patch holds the same ~60 facets).
 inline SurfaceMesh sphere_surface(double r = kRadius, double edge = kGeometryEdge,
                                   double patch = kGeometryPatch) {
-  SurfaceMesh s = geometry::geodesic_sphere(8);
-  s.vertices *= r;
-  const geometry::ElementSize fine{
-      .size = edge, .focus = Vec3(0, 0, -r), .focus_radius = patch, .growth = 1.0};
-  for (Eigen::Index before = -1; before != s.faces.cols();) {
-    before = s.faces.cols();
-    s = geometry::subdivide_surface(s, fine);
-    for (Eigen::Index i = 0; i < s.vertices.cols(); ++i)
-      s.vertices.col(i) *= r / s.vertices.col(i).norm();
-  }
-  return s;
+  return geometry::refined_sphere(8, r, edge, patch, Vec3(0, 0, -r));
 }
 
 // Element size h at the strike point, constant within 2 contact radii of it, growing at

@@ -80,7 +80,7 @@ check("nothing written for bad input", not os.path.exists(os.path.join(work, "ba
 # 4. The report: files, tables, charts, numbers equal to the cases' summary.json.
 r = run("report", study, "--out", report)
 check("report exits 0", r.returncode == 0, r.stderr)
-for name in ["report.md", "report.html", "cases.csv", "classification.csv", "particle_classes.csv", "cpu_fit.csv",
+for name in ["report.md", "report.html", "cases.csv", "references.csv", "classification.csv", "particle_classes.csv", "cpu_fit.csv",
              "candidates.csv", "guidelines.csv", "cpu_vs_resolution.png", "accuracy_vs_cost.png"]:
     check(f"{name} present", os.path.isfile(os.path.join(report, name)) and os.path.getsize(os.path.join(report, name)) > 0)
 tables = {}
@@ -189,6 +189,35 @@ for p in sorted({r["particle"] for r in cases}):
     check(f"{p}: refined centroid and strike point equal coarse (same first contact)",
           abs(sc["first_contact_time"] - sf["first_contact_time"]) <= sc["dt"],
           (sc["first_contact_time"], sf["first_contact_time"], sc["dt"]))
+# references.csv: the reference of each (particle, lowest) is the limit at 250 (one refined level: its own value), its
+# discretization term the last change, no geometry term (100 is not refined), the uncertainty their quadrature sum.
+lowest_refs = [r for r in tables.get("references.csv", []) if r["placement"] == "lowest"]
+for ref in lowest_refs:
+    p = ref["particle"]
+    sc, sf = summaries[(p, "fem-250-lowest")], summaries[(p, "fem-250-h0.15-lowest")]
+    change = abs(sc["peak_force"] - sf["peak_force"]) / abs(sf["peak_force"])
+    check(f"{p}: references.csv peak force is the finest level's", float(ref["peak_force"]) == sf["peak_force"],
+          (ref["peak_force"], sf["peak_force"]))
+    check(f"{p}: references.csv discretization term is the last change",
+          abs(float(ref["peak_force_discretization"]) - change) <= 1e-12 * change and ref["peak_force_geometry"] == ""
+          and ref["geometry_from"] == "", ref)
+    check(f"{p}: references.csv uncertainty is the quadrature sum",
+          abs(float(ref["peak_force_uncertainty"]) - change) <= 1e-12 * change, ref)
+check("references.csv: a row per particle at the lowest placement",
+      sorted(r["particle"] for r in lowest_refs) == sorted({r["particle"] for r in cases}),
+      tables.get("references.csv"))
+# The response classes: shifted exactly when the first contact moved by more than 5 % of the reference duration (the
+# shift equals cases.csv's first_contact_shift_fem), tail above 1.1 times its duration, short below 0.9.
+err_fem = {(r["particle"], r["model"], r["resolution"], r["placement"]): r for r in cases if not r["element_size"]}
+for c in tables.get("classification.csv", []):
+    labels = c["class"].split("+")
+    row = err_fem[(c["particle"], c["model"], c["resolution"], c["placement"])]
+    shift, ratio = float(c["first_contact_shift_rel"]), float(c["duration_ratio"])
+    check(f"{c['particle']} {c['model']} {c['resolution']} {c['placement']}: shift as cases.csv",
+          shift == float(row["first_contact_shift_fem"]), (shift, row["first_contact_shift_fem"]))
+    check(f"{c['particle']} {c['model']} {c['resolution']} {c['placement']}: classes from the measures",
+          ("shifted" in labels) == (abs(shift) > 0.05) and ("tail" in labels) == (ratio > 1.1)
+          and ("short" in labels) == (ratio < 0.9), c)
 fits = tables.get("cpu_fit.csv", [])
 check("CPU fit for fem and rigid", {f["model"] for f in fits} == {"fem", "rigid"}, fits)
 with open(os.path.join(report, "report.md")) as f:

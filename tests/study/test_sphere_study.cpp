@@ -23,9 +23,9 @@
 
 #include <gtest/gtest.h>
 
-#include "geometry/element_size.hpp"
 #include "geometry/geodesic_sphere.hpp"
 #include "geometry/mass_properties.hpp"
+#include "geometry/refined_sphere.hpp"
 #include "geometry/write_mesh.hpp"
 #include "reference/finite_sphere.hpp"
 #include "study/study_def.hpp"
@@ -47,22 +47,11 @@ namespace fs = std::filesystem;
 constexpr double kRadius = 0.025, kEdge = 0.0167 * kRadius, kPatch = 0.15 * kRadius;
 
 SurfaceMesh sphere_surface() {
-  SurfaceMesh s = geometry::geodesic_sphere(8);
-  s.vertices *= kRadius;
-  // the lowest vertex of the icosphere: the strike point
-  Eigen::Index low = 0;
-  for (Eigen::Index i = 1; i < s.vertices.cols(); ++i) {
-    if (s.vertices(2, i) < s.vertices(2, low)) low = i;
-  }
-  const geometry::ElementSize fine{
-      .size = kEdge, .focus = s.vertices.col(low), .focus_radius = kPatch, .growth = 1.0};
-  for (Eigen::Index before = -1; before != s.faces.cols();) {
-    before = s.faces.cols();
-    s = geometry::subdivide_surface(s, fine);
-    for (Eigen::Index i = 0; i < s.vertices.cols(); ++i)
-      s.vertices.col(i) *= kRadius / s.vertices.col(i).norm();
-  }
-  return s;
+  // The strike point: the icosphere's lowest vertex, where the study's "lowest" placement puts
+  // the contact.
+  SurfaceMesh ico = geometry::geodesic_sphere(8);
+  ico.vertices *= kRadius;
+  return geometry::refined_sphere(8, kRadius, kEdge, kPatch, geometry::lowest_vertex(ico));
 }
 
 TEST(SphereStudy, RefinedFemPeakMatchesTheFiniteSphereAndHertz) {

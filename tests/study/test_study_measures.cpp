@@ -1,6 +1,7 @@
 // Known answers for the study's curve measures: skewness, cross-correlation lag, classes,
 // quantiles and the Hertz contact time.
 #include <cmath>
+#include <cstddef>
 #include <numbers>
 #include <vector>
 
@@ -23,6 +24,12 @@ void pulse(double t0, double d, double t_end, double h, std::vector<double>& t,
     // lean > 0 stretches the fall: u' = u^(1-lean) moves the peak earlier
     f.push_back(u > 0 && u < 1 ? std::sin(std::numbers::pi * std::pow(u, 1 - lean)) : 0.0);
   }
+}
+
+std::size_t first_nonzero(const std::vector<double>& f) {
+  std::size_t i = 0;
+  while (i < f.size() && f[i] <= 0) ++i;
+  return i;
 }
 
 TEST(CurveShape, HalfSineIsSymmetric) {
@@ -55,8 +62,26 @@ TEST(Classify, Criteria) {
   EXPECT_EQ(classify(0.06, 1.0, 0.0), "shifted");
   EXPECT_EQ(classify(-0.06, 1.0, 0.0), "shifted");
   EXPECT_EQ(classify(0.0, 1.2, 0.0), "tail");
+  EXPECT_EQ(classify(0.0, 0.8, 0.0), "short");
   EXPECT_EQ(classify(0.0, 1.0, -0.4), "asymmetric");
   EXPECT_EQ(classify(0.1, 1.2, 0.4), "shifted+tail+asymmetric");
+  EXPECT_EQ(classify(0.1, 0.7, 0.0), "shifted+short");
+}
+
+// Why "shifted" is read from the first-contact time, not the cross-correlation lag: a
+// half-sine pulse 30 % shorter that starts at the same instant is a stiffer response, not a
+// shifted one, yet the lag that best aligns the two is about half the width difference (for
+// two half-sines of widths 1 and 0.7, their centres differ by 0.15 of the reference width).
+TEST(Classify, AShorterPulseThatStartsTogetherIsShortNotShifted) {
+  std::vector<double> tr, fr, t, f;
+  pulse(1.0e-4, 2e-4, 6e-4, 1e-7, tr, fr);
+  pulse(1.0e-4, 1.4e-4, 6e-4, 1e-7, t, f);
+  const double lag_rel = cross_correlation_lag(tr, fr, t, f, 6e-4) / 2e-4;
+  // Symmetric pulses align at their centres: 1.7e-4 against 2e-4, −0.15 of the reference width
+  // (to the grid's 0.29 µs = 0.0015 and the parabola's refinement).
+  EXPECT_NEAR(lag_rel, -0.15, 0.003);  // the lag alone would call it "shifted" (> 0.05)
+  const double onset_rel = (t[first_nonzero(f)] - tr[first_nonzero(fr)]) / 2e-4;
+  EXPECT_EQ(classify(onset_rel, 0.7, 0.0), "short");
 }
 
 TEST(Quantile, Type7) {

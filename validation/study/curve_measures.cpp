@@ -73,15 +73,16 @@ double cross_correlation_lag(const std::vector<double>& t_ref, const std::vector
   return shift * t_end / (points - 1);
 }
 
-std::string classify(double lag_rel, double duration_ratio, double skew_diff,
+std::string classify(double onset_shift_rel, double duration_ratio, double skew_diff,
                      const ClassifyCriteria& c) {
   std::string out;
   auto add = [&](const char* s) {
     if (!out.empty()) out += '+';
     out += s;
   };
-  if (std::abs(lag_rel) > c.shift) add("shifted");
+  if (std::abs(onset_shift_rel) > c.shift) add("shifted");
   if (duration_ratio > c.tail) add("tail");
+  if (duration_ratio < c.shortened) add("short");
   if (std::abs(skew_diff) > c.asymmetry) add("asymmetric");
   return out.empty() ? "overlapping" : out;
 }

@@ -23,14 +23,20 @@ double cross_correlation_lag(const std::vector<double>& t_ref, const std::vector
                              const std::vector<double>& t, const std::vector<double>& f,
                              double t_end, int points = 2048);
 
-// The classification criteria (docs/study.md, "Classification"), each with its reason there.
+// The classification criteria (docs/study.md, "Classification"), each tied to a tolerance of the
+// guidelines: a curve classed "overlapping" is within 5 % on the first-contact shift and 10 % on
+// the contact duration.
 struct ClassifyCriteria {
-  double shift = 0.05;      // |lag| over the reference contact duration above this: "shifted"
+  double shift = 0.05;      // |first-contact shift| over the reference duration above: "shifted"
   double tail = 1.10;       // contact duration over the reference's above this: "tail"
+  double shortened = 0.90;  // ... below this: "short" (the stiff response)
   double asymmetry = 0.30;  // |skewness − skewness of the reference| above this: "asymmetric"
 };
-// "overlapping" or the criteria met, joined by '+' (e.g. "shifted+tail").
-std::string classify(double lag_rel, double duration_ratio, double skew_diff,
+// "overlapping" or the criteria met, joined by '+' (e.g. "shifted+tail"). onset_shift_rel: the
+// first-contact time's shift from the reference's over the reference's contact duration (not the
+// cross-correlation lag, which follows the pulse width: a pulse 30 % shorter that starts at the
+// same instant lags by about 15 % of the duration).
+std::string classify(double onset_shift_rel, double duration_ratio, double skew_diff,
                      const ClassifyCriteria& c = {});
 
 // p-th quantile (0..1) with linear interpolation between order statistics (Hyndman & Fan type 7).

@@ -11,6 +11,7 @@ StudyTables write_tables(const StudyDef& def, const fs::path& dir, const StudyOu
   const tables::OJson published = tables::read_published_study(ASPERITY_PUBLISHED_STUDY);
   const tables::StudyCases cases = tables::load_study_cases(def, dir);
   tables::write_cases_table(cases, dir);
+  tables::write_references_table(cases, dir);
   const std::vector<tables::Classification> classes = tables::classify_resolutions(cases);
   tables::write_classification_table(classes, dir);
   tables::write_particle_classes_table(classes, dir);

@@ -1,6 +1,7 @@
 // classification.csv: each model and resolution's force curve against the converged fem
 // reference curve (docs/study.md, "Classification").
 #include <algorithm>
+#include <cmath>
 
 #include "study/curve_measures.hpp"
 #include "study/tables/tables.hpp"
@@ -33,6 +34,7 @@ std::vector<Classification> classify_resolutions(const StudyCases& s) {
           const double ratio =
               d_ref > 0 ? c->summary["contact_duration"].get<double>() / d_ref : std::nan("");
           const CurveShape cs = curve_shape(cc.t, cc.f);
+          const double onset = s.err_fem[s.index_of(*c)].arrival;
           out.push_back({.particle = p.name,
                          .model = m,
                          .placement = pl,
@@ -40,9 +42,10 @@ std::vector<Classification> classify_resolutions(const StudyCases& s) {
                          .lag = lag,
                          .lag_rel = d_ref > 0 ? lag / d_ref : std::nan(""),
                          .duration_ratio = ratio,
+                         .onset_shift_rel = onset,
                          .skewness = cs.skewness,
                          .skewness_reference = rs.skewness,
-                         .cls = classify(d_ref > 0 ? lag / d_ref : 0, ratio,
+                         .cls = classify(std::isfinite(onset) ? onset : 0, ratio,
                                          cs.skewness - rs.skewness, criteria)});
         }
       }
@@ -56,13 +59,15 @@ void write_classification_table(const std::vector<Classification>& rows,
   std::vector<std::vector<OJson>> table;
   for (const Classification& r : rows) {
     table.push_back({r.particle, model_name(r.model), placement_name(r.placement), r.resolution,
-                     r.lag, finite_or_null(r.lag_rel), finite_or_null(r.duration_ratio), r.skewness,
-                     r.skewness_reference, r.skewness - r.skewness_reference, r.cls});
+                     r.lag, finite_or_null(r.lag_rel), finite_or_null(r.onset_shift_rel),
+                     finite_or_null(r.duration_ratio), r.skewness, r.skewness_reference,
+                     r.skewness - r.skewness_reference, r.cls});
   }
-  write_csv(dir / "classification.csv",
-            {"particle", "model", "placement", "resolution", "lag", "lag_rel", "duration_ratio",
-             "skewness", "skewness_reference", "skewness_diff", "class"},
-            table);
+  write_csv(
+      dir / "classification.csv",
+      {"particle", "model", "placement", "resolution", "lag", "lag_rel", "first_contact_shift_rel",
+       "duration_ratio", "skewness", "skewness_reference", "skewness_diff", "class"},
+      table);
 }
 
 }  // namespace asperity::study::tables

@@ -120,12 +120,16 @@ void settle(StudyCases& s) {
       if (!ref) continue;
       StudyCases::Reference r;
       r.index = ref->answer;
+      r.resolution = def.reference;
+      r.levels = ref->levels;
+      r.peak = ref->peak;
       r.values = ref->limit;
       r.discretization = ref->limit_error;
       for (auto it = def.resolutions.rbegin() + 1; it < def.resolutions.rend(); ++it) {
         const Sequence* prev = s.sequence(p.name, *it, pl);
         if (prev && (prev->levels > 1) == (ref->levels > 1)) {
           r.geometry = abs_of(compare(prev->limit, ref->limit));
+          r.geometry_resolution = *it;
           break;
         }
       }

@@ -112,6 +112,10 @@ struct StudyCases {
   // resolution that was refined (is the finest geometry fine enough?).
   struct Reference {
     std::size_t index = 0;
+    long resolution = 0;           // the finest resolution's N
+    long geometry_resolution = 0;  // the coarser N the geometry term compares with (0: none)
+    int levels = 0;                // usable levels of its sequence, the coarse one included
+    Extrapolation peak;            // the peak force's extrapolation (order, observed)
     Measures values;
     FemErrors discretization, geometry, uncertainty;
   };

@@ -2,6 +2,7 @@
 // them. Each reads the loaded cases (study_cases.hpp) and writes its file atomically into DIR.
 #pragma once
 
+#include <cmath>
 #include <filesystem>
 #include <map>
 #include <string>
@@ -25,6 +26,9 @@ struct Classification {
   Placement placement;
   long resolution;
   double lag, lag_rel, duration_ratio;  // lag_rel, duration_ratio NaN without a reference duration
+  // The first-contact time's shift from the reference's over the reference's contact duration
+  // (cases.csv first_contact_shift_fem): what "shifted" means.
+  double onset_shift_rel = std::nan("");
   double skewness, skewness_reference;
   std::string cls;  // classify()
 };
@@ -36,6 +40,12 @@ void write_classification_table(const std::vector<Classification>& rows,
 // and the coarsest resolution's class.
 void write_particle_classes_table(const std::vector<Classification>& rows,
                                   const std::filesystem::path& dir);
+
+// references.csv: per particle and placement, the reference (the limit of the fem sequence at the
+// finest resolution), the order its peak force was extrapolated at (observed or assumed) and,
+// per metric, the two terms of its uncertainty and their quadrature sum (docs/study.md, "The
+// reference"): which dominates, discretization or geometry.
+void write_references_table(const StudyCases& s, const std::filesystem::path& dir);
 
 // Median CPU per resolution across particles fitted as t = C N^p (least squares, log–log).
 struct CpuFit {

@@ -1,0 +1,43 @@
+// references.csv: each particle's reference and the two terms of its uncertainty
+// (docs/study.md, "The reference").
+#include "study/tables/tables.hpp"
+
+namespace asperity::study::tables {
+
+void write_references_table(const StudyCases& s, const std::filesystem::path& dir) {
+  std::vector<std::vector<OJson>> rows;
+  for (Placement pl : s.def.placements) {
+    for (const ParticleSource& p : s.def.particles) {
+      const StudyCases::Reference* r = s.reference(p.name, pl);
+      if (!r) continue;
+      std::vector<OJson> row = {
+          p.name,
+          placement_name(pl),
+          r->resolution,
+          r->levels,
+          finite_or_null(r->values.peak),
+          finite_or_null(r->values.impulse),
+          finite_or_null(r->values.duration),
+          finite_or_null(r->peak.order),
+          std::isfinite(r->peak.order) ? OJson(r->peak.observed) : OJson(),
+          r->geometry_resolution > 0 ? OJson(r->geometry_resolution) : OJson()};
+      // The first-contact time is the free flight's: its terms are not a study finding.
+      for (std::size_t k = 0; k + 1 < kMetricCount; ++k) {
+        row.push_back(finite_or_null(r->discretization.metric(k)));
+        row.push_back(r->geometry_resolution > 0 ? finite_or_null(r->geometry.metric(k)) : OJson());
+        row.push_back(finite_or_null(r->uncertainty.metric(k)));
+      }
+      rows.push_back(std::move(row));
+    }
+  }
+  std::vector<std::string> header = {
+      "particle", "placement",        "resolution",       "levels",         "peak_force",
+      "impulse",  "contact_duration", "peak_force_order", "order_observed", "geometry_from"};
+  for (std::size_t k = 0; k + 1 < kMetricCount; ++k) {
+    for (const char* term : {"_discretization", "_geometry", "_uncertainty"})
+      header.push_back(std::string(kMetrics[k]) + term);
+  }
+  write_csv(dir / "references.csv", header, rows);
+}
+
+}  // namespace asperity::study::tables
