@@ -118,8 +118,11 @@ TEST(HertzSeries, LimitTendsToHertzAsTheContactShrinks) {
 // order is not yet steady: 4.3 on this triple); the finest level and the limit within the 2
 // % of the reference, and the limit within 0.5 point of it (measured 0.10: five times the measured
 // distance, which is what the peak limit's unsteady order leaves as its uncertainty, about 0.1
-// point, plus the reference's own 0.015). Cost: 73 + 175 + 926 s of run CPU, 149 s of meshing
-// the finest level (its step is contact-limited: 23 315 steps).
+// point, plus the reference's own 0.015). Run end to end on main (2026-12-02, nice 5, the machine
+// mostly idle): passed in 1 749 s wall; run CPU 59.8 + 144.6 + 492.8 s (the finest level's step is
+// contact-limited: 23 315 steps at 7.4e-7 s), the rest meshing and set-up; filtered peak +5.61,
+// +5.16, +5.06 %, duration −4.38, −3.79, −3.50 %; orders 4.27 (filtered peak) and 2.11
+// (duration); limits +5.03 / −3.24 % against the dynamic reference's +4.93 / −3.32 %.
 TEST(HertzConvergence, LinearLawSettlesOntoTheDynamicReference) {
   const Sequence q =
       sequence(Setup::block, hertz::kSpeed, {1.0, 1.0 / kRatio, 0.5}, {.law = ElasticLaw::linear});
