@@ -17,14 +17,21 @@ struct TetStress {
   double j = 1;               // det F (≤ 0: inverted, both measures left 0)
 };
 
-// F = Ds Dm⁻¹ (dm_inv column-major, as TetElements stores it). The Cauchy stress of the energy
+// F = Ds Dm⁻¹ of the tetrahedron (dm_inv column-major, as TetElements stores it): both laws'
+// measures start from it.
+inline Mat3 tet_deformation_gradient(const double* dm_inv, const Vec3& x0, const Vec3& x1,
+                                     const Vec3& x2, const Vec3& x3) {
+  Mat3 ds;
+  ds << x1 - x0, x2 - x0, x3 - x0;
+  return ds * Eigen::Map<const Mat3>(dm_inv);
+}
+
+// The neo-Hookean law's: the Cauchy stress of the energy
 // Ψ = μ/2 (tr C − 3) − μ ln J + λ/2 (ln J)² is σ = J⁻¹ P Fᵀ = (μ/J)(b − I) + (λ ln J / J) I with
 // b = F Fᵀ (Bonet & Wood 2008, eq. 6.29); von Mises √(3/2 s:s), s its deviator.
 inline TetStress neo_hookean_tet_stress(const double* dm_inv, Lame lame, const Vec3& x0,
                                         const Vec3& x1, const Vec3& x2, const Vec3& x3) {
-  Mat3 ds;
-  ds << x1 - x0, x2 - x0, x3 - x0;
-  const Mat3 f = ds * Eigen::Map<const Mat3>(dm_inv);
+  const Mat3 f = tet_deformation_gradient(dm_inv, x0, x1, x2, x3);
   TetStress out;
   out.j = f.determinant();
   if (!(out.j > 0)) return out;
@@ -43,9 +50,7 @@ inline TetStress neo_hookean_tet_stress(const double* dm_inv, Lame lame, const V
 // Ψ = λ/2 (tr ε)² + μ ε:ε.
 inline TetStress linear_tet_stress(const double* dm_inv, Lame lame, const Vec3& x0, const Vec3& x1,
                                    const Vec3& x2, const Vec3& x3) {
-  Mat3 ds;
-  ds << x1 - x0, x2 - x0, x3 - x0;
-  const Mat3 f = ds * Eigen::Map<const Mat3>(dm_inv);
+  const Mat3 f = tet_deformation_gradient(dm_inv, x0, x1, x2, x3);
   TetStress out;
   out.j = f.determinant();
   if (!(out.j > 0)) return out;
