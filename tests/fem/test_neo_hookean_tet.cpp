@@ -5,6 +5,7 @@
 
 #include <Eigen/Eigenvalues>
 
+#include "energy_gradient_check.hpp"
 #include "fdem/structured_mesh.hpp"
 #include "fem/neo_hookean_tet.hpp"
 #include "fem/tet_elements.hpp"
@@ -13,6 +14,7 @@
 namespace asperity::fem {
 namespace {
 
+using test_material::expect_forces_are_minus_energy_gradient;
 using test_material::kE;
 using test_material::kNu;
 using test_material::kRho;
@@ -92,28 +94,15 @@ TEST(NeoHookeanTet, ForcesAreMinusEnergyGradient) {
   const TetReference ref =
       tet_reference(Vec3(0, 0, 0), Vec3(1, 0, 0), Vec3(0, 1, 0), Vec3(0, 0, 1));
   const Lame l = lame_from(kE, kNu);
-  double x[4][3] = {{0.05, -0.02, 0.01}, {1.1, 0.03, -0.05}, {0.02, 0.85, 0.1}, {-0.1, 0.05, 1.2}};
-  auto energy_at = [&]() {
-    double f[4][3] = {}, w = 0;
-    neo_hookean_tet_forces<true>(ref.dm_inv.data(), ref.volume, l, x[0], x[1], x[2], x[3], f[0],
-                                 f[1], f[2], f[3], &w);
-    return w;
-  };
-  double f[4][3] = {}, w = 0;
-  neo_hookean_tet_forces<true>(ref.dm_inv.data(), ref.volume, l, x[0], x[1], x[2], x[3], f[0], f[1],
-                               f[2], f[3], &w);
-  const double h = 1e-6;
-  for (int a = 0; a < 4; ++a) {
-    for (int r = 0; r < 3; ++r) {
-      const double keep = x[a][r];
-      x[a][r] = keep + h;
-      const double wp = energy_at();
-      x[a][r] = keep - h;
-      const double wm = energy_at();
-      x[a][r] = keep;
-      EXPECT_NEAR(f[a][r], -(wp - wm) / (2 * h), 1e-6 * kE) << a << "," << r;
-    }
-  }
+  expect_forces_are_minus_energy_gradient(
+      [&](double(&x)[4][3], double(&f)[4][3]) {
+        for (auto& row : f) row[0] = row[1] = row[2] = 0;
+        double w = 0;
+        neo_hookean_tet_forces<true>(ref.dm_inv.data(), ref.volume, l, x[0], x[1], x[2], x[3], f[0],
+                                     f[1], f[2], f[3], &w);
+        return w;
+      },
+      1e-6 * kE);
 }
 
 // The batched element loop (add_internal_forces) is the one-element kernel run element by
