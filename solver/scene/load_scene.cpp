@@ -210,9 +210,12 @@ SceneDef parse_scene(const io::Json& json, const std::filesystem::path& file,
   mats.require_object();
   if (mats.value().empty()) mats.fail("", "must define at least one material");
   std::map<std::string, int> material_index;
+  std::vector<std::string> law_given;  // materials that name an elastic law (checked below)
   for (const auto& [name, m] : mats.value().items()) {
     material_index[name] = static_cast<int>(s.materials.size());
-    s.materials.push_back(parse_material(JsonReader(m, file, mats.path() + "." + name), name));
+    const JsonReader mr(m, file, mats.path() + "." + name);
+    s.materials.push_back(parse_material(mr, name));
+    if (mr.has("law")) law_given.push_back(name);
   }
 
   const JsonReader bodies = r.child("bodies");
@@ -267,6 +270,20 @@ SceneDef parse_scene(const io::Json& json, const std::filesystem::path& file,
       body.damping_ratio = b.in_range("damping_ratio", 0.0, 100.0, false, false);
     }
     s.bodies.push_back(std::move(body));
+  }
+
+  // An elastic law acts on a deformable body's tetrahedra only: a law on a material that no fem
+  // body uses would be silently ignored, so it is refused like any other key that does nothing.
+  for (const std::string& name : law_given) {
+    const int index = material_index.at(name);
+    bool used = false;
+    for (const BodyDef& body : s.bodies) used |= body.material == index && body.model == Model::fem;
+    if (!used) {
+      mats.child(name).fail("law",
+                            "only deformable bodies (model \"fem\") take an elastic law, "
+                            "and no fem body uses material \"" +
+                                name + "\"");
+    }
   }
 
   if (r.has("contact")) s.contact = parse_contact(r.child("contact"));

@@ -106,11 +106,22 @@ TEST(LoadScene, RestitutionOutsideItsRangeIsRefused) {
 }
 
 // materials.NAME.law: "neo-hookean" (the default) or "linear"; anything else (a typo, a number) is
-// refused naming the key and the value, with a suggestion for a near miss.
+// refused naming the key and the value, with a suggestion for a near miss. The law acts on
+// deformable bodies only: on a material no fem body uses it would do nothing, so it is refused.
 TEST(LoadScene, ElasticLawIsOneOfTheKnownNames) {
-  EXPECT_EQ(error_of("law-ok",
-                     edit("\"restitution\": 0.9}", "\"restitution\": 0.9, \"law\": \"linear\"}")),
-            "");
+  const std::string mesh = std::string(ASPERITY_SOURCE_DIR) + "/data/meshes/particle-seed3-320.off";
+  const fs::path fem =
+      write_scene("law-fem", R"({"duration": 0.001, "materials": {"rock":
+      {"density": 2650, "young": 5e10, "poisson": 0.25, "law": "linear"}}, "bodies": [{"name":
+      "rock", "material": "rock", "model": "fem", "shape": {"type": "mesh", "file": ")" +
+                                 mesh + R"("}}], "contact": {"law": "potential"}})");
+  EXPECT_EQ(scene::load_scene(fem).materials.at(0).law, ElasticLaw::linear);
+  const std::string unused = error_of(
+      "law-rigid", edit("\"restitution\": 0.9}", "\"restitution\": 0.9, \"law\": \"linear\"}"));
+  EXPECT_NE(unused.find("materials.glass.law: only deformable bodies (model \"fem\") take an "
+                        "elastic law, and no fem body uses material \"glass\""),
+            std::string::npos)
+      << unused;
   const std::string typo =
       error_of("law", edit("\"restitution\": 0.9}", "\"restitution\": 0.9, \"law\": \"linaer\"}"));
   EXPECT_NE(typo.find("materials.glass.law: unknown elastic law \"linaer\" (did you mean "
