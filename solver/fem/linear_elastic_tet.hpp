@@ -38,19 +38,7 @@ inline double linear_tet_nodal_forces(const double* b, double volume, Lame lame,
   const double l = lame.lambda * (e00 + e11 + e22);
   const double P00 = l + mu2 * e00, P11 = l + mu2 * e11, P22 = l + mu2 * e22;
   const double P01 = mu2 * e01, P02 = mu2 * e02, P12 = mu2 * e12;
-  const double b0 = b[0], b1 = b[S], b2 = b[2 * S], b3 = b[3 * S], b4 = b[4 * S], b5 = b[5 * S],
-               b6 = b[6 * S], b7 = b[7 * S], b8 = b[8 * S];
-  const double v = -volume;
-  // Column a of H (node a+1): −V₀ P · (row a of B); P is symmetric.
-  h[0] = v * (P00 * b0 + P01 * b3 + P02 * b6);
-  h[3 * S] = v * (P01 * b0 + P11 * b3 + P12 * b6);
-  h[6 * S] = v * (P02 * b0 + P12 * b3 + P22 * b6);
-  h[S] = v * (P00 * b1 + P01 * b4 + P02 * b7);
-  h[4 * S] = v * (P01 * b1 + P11 * b4 + P12 * b7);
-  h[7 * S] = v * (P02 * b1 + P12 * b4 + P22 * b7);
-  h[2 * S] = v * (P00 * b2 + P01 * b5 + P02 * b8);
-  h[5 * S] = v * (P01 * b2 + P11 * b5 + P12 * b8);
-  h[8 * S] = v * (P02 * b2 + P12 * b5 + P22 * b8);
+  tet_piola_forces<S>(b, volume, P00, P01, P02, P01, P11, P12, P02, P12, P22, h);
   const double w0 = 0.5 * (F[7 * S] - F[5 * S]), w1 = 0.5 * (F[2 * S] - F[6 * S]),
                w2 = 0.5 * (F[3 * S] - F[S]);
   return std::sqrt(w0 * w0 + w1 * w1 + w2 * w2);

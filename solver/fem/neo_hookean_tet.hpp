@@ -87,23 +87,17 @@ inline double tet_deformation(const double* d, const double* b, double* F, doubl
   return F00 * C00 + F01 * C01 + F02 * C02;
 }
 
-// Stage 2, for J > 0 and ln_j = ln J: H = −V₀ P Bᵀ with P = μ F + s cof F, s = (λ ln J − μ)/J,
-// into h[(3r + a) S] = H(r, a), the force on node a + 1 (node 0 takes minus the row sums).
+// H = −V₀ P Bᵀ, column a (the force on node a + 1) = −V₀ Σ_c P(:, c) B(a, c), into
+// h[(3r + a) S] = H(r, a) (node 0 takes minus the row sums), for a first Piola–Kirchhoff stress
+// P given by its nine components: every element law's last stage (a symmetric P passes its
+// upper triangle twice).
 template <int S>
-inline void tet_nodal_forces(const double* b, double volume, Lame lame, double J, double ln_j,
-                             const double* F, const double* C, double* h) {
-  const double mu = lame.mu;
-  const double s = (lame.lambda * ln_j - mu) / J;
-  const double P00 = mu * F[0] + s * C[0], P01 = mu * F[S] + s * C[S],
-               P02 = mu * F[2 * S] + s * C[2 * S];
-  const double P10 = mu * F[3 * S] + s * C[3 * S], P11 = mu * F[4 * S] + s * C[4 * S],
-               P12 = mu * F[5 * S] + s * C[5 * S];
-  const double P20 = mu * F[6 * S] + s * C[6 * S], P21 = mu * F[7 * S] + s * C[7 * S],
-               P22 = mu * F[8 * S] + s * C[8 * S];
+inline void tet_piola_forces(const double* b, double volume, double P00, double P01, double P02,
+                             double P10, double P11, double P12, double P20, double P21, double P22,
+                             double* h) {
   const double b0 = b[0], b1 = b[S], b2 = b[2 * S], b3 = b[3 * S], b4 = b[4 * S], b5 = b[5 * S],
                b6 = b[6 * S], b7 = b[7 * S], b8 = b[8 * S];
   const double v = -volume;
-  // Column a of H (node a+1): −V₀ P · (row a of B) = −V₀ Σ_c P(:, c) B(a, c).
   h[0] = v * (P00 * b0 + P01 * b3 + P02 * b6);
   h[3 * S] = v * (P10 * b0 + P11 * b3 + P12 * b6);
   h[6 * S] = v * (P20 * b0 + P21 * b3 + P22 * b6);
@@ -113,6 +107,19 @@ inline void tet_nodal_forces(const double* b, double volume, Lame lame, double J
   h[2 * S] = v * (P00 * b2 + P01 * b5 + P02 * b8);
   h[5 * S] = v * (P10 * b2 + P11 * b5 + P12 * b8);
   h[8 * S] = v * (P20 * b2 + P21 * b5 + P22 * b8);
+}
+
+// Stage 2, for J > 0 and ln_j = ln J: H = −V₀ P Bᵀ with P = μ F + s cof F, s = (λ ln J − μ)/J,
+// into h as tet_piola_forces stores it.
+template <int S>
+inline void tet_nodal_forces(const double* b, double volume, Lame lame, double J, double ln_j,
+                             const double* F, const double* C, double* h) {
+  const double mu = lame.mu;
+  const double s = (lame.lambda * ln_j - mu) / J;
+  tet_piola_forces<S>(
+      b, volume, mu * F[0] + s * C[0], mu * F[S] + s * C[S], mu * F[2 * S] + s * C[2 * S],
+      mu * F[3 * S] + s * C[3 * S], mu * F[4 * S] + s * C[4 * S], mu * F[5 * S] + s * C[5 * S],
+      mu * F[6 * S] + s * C[6 * S], mu * F[7 * S] + s * C[7 * S], mu * F[8 * S] + s * C[8 * S], h);
 }
 
 // ln J as every element kernel takes it: log_series (fem/log_series.hpp, which the batched loop
