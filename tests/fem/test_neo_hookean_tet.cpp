@@ -9,6 +9,7 @@
 #include "fdem/structured_mesh.hpp"
 #include "fem/neo_hookean_tet.hpp"
 #include "fem/tet_elements.hpp"
+#include "strained_ball.hpp"
 #include "test_material.hpp"
 
 namespace asperity::fem {
@@ -112,13 +113,7 @@ TEST(NeoHookeanTet, ForcesAreMinusEnergyGradient) {
 TEST(TetElements, BatchedLoopEqualsTheOneElementKernelExactly) {
   const TetMesh m = fdem::ball_mesh(0.1, 3);  // 162 elements
   const TetElements e = make_tet_elements(m.nodes, m.tets, kE, kNu, kRho, 0, "ball");
-  Eigen::Matrix3Xd x = m.nodes;
-  for (Eigen::Index i = 0; i < x.cols(); ++i) {
-    x.col(i) +=
-        0.01 * Vec3(std::sin(3.0 * static_cast<double>(i)), std::cos(5.0 * static_cast<double>(i)),
-                    std::sin(7.0 * static_cast<double>(i)));
-  }
-  x.col(e.tets(3, 100)) = x.col(e.tets(0, 100)) - (x.col(e.tets(3, 100)) - x.col(e.tets(0, 100)));
+  Eigen::Matrix3Xd x = test_material::strained_ball(e, m.nodes);
   Eigen::Matrix3Xd f = Eigen::Matrix3Xd::Zero(3, x.cols()), g = f;
   const InternalForceResult r = add_internal_forces(e, x, x * 0, f, true);
   double energy = 0;
