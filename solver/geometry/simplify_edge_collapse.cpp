@@ -12,6 +12,7 @@
 
 #include "core/error.hpp"
 #include "geometry/cgal_surface_mesh.hpp"
+#include "geometry/remove_short_edges.hpp"
 
 namespace asperity::geometry {
 
@@ -53,7 +54,9 @@ SurfaceMesh simplify_edge_collapse(const SurfaceMesh& mesh, long faces) {
                              " triangles, not the " + std::to_string(faces) +
                              " asked for: the remaining collapses would fold faces over");
   }
-  return cgal::from_cgal(cm);
+  SurfaceMesh out = cgal::from_cgal(cm);
+  remove_short_edges(out);
+  return out;
 }
 
 }  // namespace asperity::geometry
