@@ -76,6 +76,14 @@ check("unknown key exits 2", r.returncode == 2, r.returncode)
 check("one line naming the key", r.stderr.count("\n") == 1 and "resolution" in r.stderr and "resolutions" in r.stderr,
       r.stderr)
 check("nothing written for bad input", not os.path.exists(os.path.join(work, "bad")))
+# refinement.max_contact_factor as the scene key: 0 or at least 1
+j.pop("resolution")
+j["refinement"]["max_contact_factor"] = 0.5
+with open(bad, "w") as f:
+    json.dump(j, f)
+r = run("study", bad, "--out", os.path.join(work, "bad"))
+check("max_contact_factor below 1 exits 2 naming it",
+      r.returncode == 2 and r.stderr.count("\n") == 1 and "max_contact_factor" in r.stderr, (r.returncode, r.stderr))
 
 # 4. The report: files, tables, charts, numbers equal to the cases' summary.json.
 r = run("report", study, "--out", report)
@@ -186,6 +194,10 @@ for p in sorted({r["particle"] for r in cases}):
     check(f"{p}: refined volume equals coarse", abs(mc - mf) <= 1e-9 * mc, (mc, mf))
     check(f"{p}: refined mesh has more tetrahedra", sf["bodies"][0]["tets"] > sc["bodies"][0]["tets"],
           (sc["bodies"][0]["tets"], sf["bodies"][0]["tets"]))
+    # refinement.max_contact_factor reaches the refined case alone (the coarse one keeps the penalty as asked)
+    check(f"{p}: the refined case meets the study's contact factor, the coarse none",
+          sf["max_contact_factor"] == 2 and sc["max_contact_factor"] == 0,
+          (sf["max_contact_factor"], sc["max_contact_factor"]))
     check(f"{p}: refined centroid and strike point equal coarse (same first contact)",
           abs(sc["first_contact_time"] - sf["first_contact_time"]) <= sc["dt"],
           (sc["first_contact_time"], sf["first_contact_time"], sc["dt"]))

@@ -716,9 +716,10 @@ def axes_section(doc, cases):
                "converged (< 1 %)"], per)
 
 
-def references_section(doc, references, growth):
+def references_section(doc, references, growth, contact_factor=0):
     """The reference of each particle and the two terms of its uncertainty (references.csv); `growth` the refined
-    levels' far-field grading (study.json), whose bias the uncertainty does not include."""
+    levels' far-field grading (study.json), whose bias the uncertainty does not include; `contact_factor` their
+    contact.max_contact_factor (study.json refinement.max_contact_factor, 0: none)."""
     if not references:
         return
     doc.h(2, "The reference and its uncertainty")
@@ -745,6 +746,11 @@ def references_section(doc, references, growth):
               "limits were measured 0.8-3.1 % (median 1.5 %) stiffer in peak force than at 0.15 on three of these "
               "particles, and a sphere's limit +3.0 % from the finite-sphere reference against +1.5 % at 0.15 "
               "(docs/study.md, 'Grading 0.15 or a third level'): read the peak-force reference as about 1.5 % high.")
+    if contact_factor:
+        doc.p(f"The refined levels' contact step is held within {contact_factor:g}x of their elements' own: where the "
+              "study's penalty on a small surface face would set a shorter step, that face's penalty is lowered "
+              "(refinement.max_contact_factor; docs/study.md, 'Grading 0.15 or a third level', for its measured effect "
+              "on the peak force).")
 
 
 def main():
@@ -781,8 +787,9 @@ def main():
     answer_section(doc, guidelines, summary["published"])
     axes_section(doc, cases)
     with open(os.path.join(a.study, "study.json")) as fh:
-        growth = (json.load(fh).get("refinement") or {}).get("growth")
-    references_section(doc, read_csv(os.path.join(a.study, "references.csv")), growth)
+        refinement = json.load(fh).get("refinement") or {}
+    references_section(doc, read_csv(os.path.join(a.study, "references.csv")), refinement.get("growth"),
+                       refinement.get("max_contact_factor") or 0)
     doc.p(f"{summary['particles']} particles x resolutions {summary['resolutions']} x models "
           f"{', '.join(summary['models'])} x placements {', '.join(summary['placements'])}: {summary['cases']} cases, "
           f"{summary['done']} done, {summary['failed']} failed. Each particle is launched straight down onto a fixed "

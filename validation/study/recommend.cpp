@@ -171,6 +171,8 @@ OJson scene_change(const OJson& rec, const io::Json& g, const Particle& particle
       change["shape.element_size_focus_radius"] =
           grading.value("focus_radius", 4.0) * h.get<double>() * diameter / 2;
       change["shape.element_size_growth"] = grading.value("growth", 0.3);
+      const double factor = grading.value("max_contact_factor", 0.0);
+      if (factor > 0) change["contact.max_contact_factor"] = factor;
     }
   }
   return change;

@@ -214,7 +214,8 @@ StudyDef load_study(const fs::path& file) {
   if (r.has("refinement")) {
     const JsonReader f = r.child("refinement");
     f.require_object();
-    f.only_keys({"sizes", "resolutions", "placements", "tolerance", "focus_radius", "growth"});
+    f.only_keys({"sizes", "resolutions", "placements", "tolerance", "focus_radius", "growth",
+                 "max_contact_factor"});
     const JsonReader sizes = f.child("sizes");
     for (std::size_t i = 0, n = sizes.require_array(); i < n; ++i) {
       const Json& v = sizes.at(i).value();
@@ -256,6 +257,16 @@ StudyDef load_study(const fs::path& file) {
     if (f.has("focus_radius"))
       s.refinement.focus_radius = f.in_range("focus_radius", 0, 100, false, false);
     if (f.has("growth")) s.refinement.growth = f.in_range("growth", 0, 10, false, false);
+    if (f.has("max_contact_factor")) {
+      // As the scene key contact.max_contact_factor: 0 (none) or a factor of at least 1.
+      const double c = f.in_range("max_contact_factor", 0, 1e6, false, false);
+      if (c > 0 && c < 1) {
+        f.fail(
+            "max_contact_factor",
+            "must be 0 (no limit) or at least 1 (the contact cannot lengthen the elements' step)");
+      }
+      s.refinement.max_contact_factor = c;
+    }
   }
 
   if (r.has("speed")) s.speed = r.in_range("speed", 0, 1000, true, false);
@@ -340,7 +351,8 @@ nlohmann::ordered_json definition_json(const StudyDef& def) {
                             {"placements", refine_placements},
                             {"tolerance", def.refinement.tolerance},
                             {"focus_radius", def.refinement.focus_radius},
-                            {"growth", def.refinement.growth}};
+                            {"growth", def.refinement.growth},
+                            {"max_contact_factor", def.refinement.max_contact_factor}};
   return {{"name", def.name},
           {"particles", particles},
           {"particle_size", optional_json(def.particle_size)},

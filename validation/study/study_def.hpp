@@ -53,6 +53,10 @@ struct Refinement {
   double tolerance = 0.01;            // converged: peak changes less than this between the last two
   double focus_radius = 4;            // h holds within this many h of the strike point
   double growth = 0.3;                // then grows at this rate (the Hertz gate's, issue 11)
+  // The refined cases' contact.max_contact_factor (0: none, the penalty as asked). The study gives
+  // penalty_alpha, so the scene default's factor 2 does not apply; a finely graded mesh's small
+  // surface faces can then set a step far below the elements' own (docs/study.md).
+  double max_contact_factor = 0;
   bool applies(long resolution, Placement p) const;
 };
 
