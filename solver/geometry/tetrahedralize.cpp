@@ -462,7 +462,11 @@ TetMesh tetrahedralize(const SurfaceMesh& input, const TetOptions& options_in) {
   // faces, the step's tetrahedron on one of them 0.12 high across its longest edge, which no
   // round reaches since its height over the face passes). The rounds run again with an apex
   // of its own for every lifted face, and that mesh is kept when its element step is longer.
-  if (options.min_element_step_ratio <= 0 ||
+  // Only where the surface triangles are the elements' faces (no element size): the bound is
+  // the for those meshes; with an element size the step is the size's, and the study's
+  // refined references (rock_02's at 0.08 and 0.04 R, graded at 0.15: 0.098 and 0.147 of the
+  // bisected surface's h/c) stay as they were made.
+  if (options.min_element_step_ratio <= 0 || options.element_size.set() ||
       element_step_ratio(surface, shared.element_frequency) >= options.min_element_step_ratio) {
     return shared.mesh;
   }

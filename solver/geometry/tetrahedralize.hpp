@@ -45,8 +45,9 @@ struct TetOptions {
   // surface edge, c the P-wave speed; issue 11, item 5 asks 1/3 ≤ dt_element·c/h ≤ 3 of every
   // mesh the study makes): the result is the one with the longer element step. A shared apex
   // leaves the fewest tetrahedra but can stand far across a face (docs/geometry.md, "Surface
-  // tetrahedra"). Meshes at or above the bound are returned as before, bit for bit. Measured
-  // at ν = 0.25 (element_step_ratio); 0 turns it off.
+  // tetrahedra"). Meshes at or above the bound, and meshes with an element_size (whose step is
+  // the size's), are returned as before, bit for bit. Measured at ν = 0.25
+  // (element_step_ratio); 0 turns it off.
   double min_element_step_ratio = 1.0 / 3.0;
   // Element size apart from the surface (issue 11; docs/geometry.md, "Element size"): when set,
   // the surface triangles are first bisected in their own planes down to the size

@@ -157,7 +157,8 @@ TEST(Tetrahedralize, LiftsNeverShrinkThePredictedStep) {
 // Below the element step bound (TetOptions::min_element_step_ratio) the lifting rounds run
 // again with an apex of its own for every face, and the mesh with the longer element step is
 // kept; at or above it nothing changes. A bound of 100 (no mesh meets it) forces the second
-// pass on every surface here; the default bound leaves these meshes (0.5–1.3) bit for bit.
+// pass on every surface here; the default bound leaves these meshes (0.5–1.3) bit for bit, and so
+// does any bound a mesh with an element size.
 TEST(Tetrahedralize, OwnApexesOnlyBelowTheStepBoundAndNeverAShorterStep) {
   for (long n : {100L, 500L}) {
     SCOPED_TRACE(n);
@@ -171,6 +172,13 @@ TEST(Tetrahedralize, OwnApexesOnlyBelowTheStepBoundAndNeverAShorterStep) {
     const TetMesh forced = tetrahedralize(s, {.min_element_step_ratio = 100});
     expect_tets_keep_surface(s, forced);
     EXPECT_LE(step_scales(forced).element_frequency, a.element_frequency);
+    // With an element size the step is the size's: never lifted again, whatever the bound.
+    const ElementSize size{.size = 0.5 * mass_properties(s).equivalent_radius};
+    const TetMesh sized_off =
+        tetrahedralize(s, {.min_element_step_ratio = 0, .element_size = size});
+    const TetMesh sized = tetrahedralize(s, {.min_element_step_ratio = 100, .element_size = size});
+    EXPECT_TRUE(sized.nodes == sized_off.nodes);
+    EXPECT_TRUE(sized.tets == sized_off.tets);
   }
 }
 
