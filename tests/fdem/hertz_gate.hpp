@@ -60,7 +60,7 @@ inline Sequence sequence(Setup setup, double speed, std::initializer_list<double
 // within 2 % of the extrapolated limit (the 2 %, applied to what the solver controls),
 // and the rebound impulse 2mv within 0.5 % (vibration keeps 0.01–0.02 % on these meshes).
 // `filtered`: gate the peak after the T/20 moving average instead of the raw peak. The pair
-// needs it: its deformable–deformable contact rings (raw peak 3.2 points above the filtered one
+// needs it: its deformable–deformable contact rings (raw peak 2.8 points above the filtered one
 // at s = 1, and rising from s = √2 to 1 while the filtered peak and the duration fall).
 // `own_error` false: the finest level's distance from the Richardson limit is printed, not gated
 // (a sequence whose observed order is below 1 and whose next level is known not to follow the
