@@ -92,8 +92,8 @@ struct Level {
   double peak = 0, duration = 0;  // N, s
   double err_force = 0, err_duration = 0;
   // The peak after a centred moving average over a twentieth of the contact (the filter of
-  // run/impact_measures.hpp: lowers a half-sine's peak by 0.1 %), and its error: what of the raw
-  // peak is ringing.
+  // run/impact_measures.hpp: lowers a Hertz pulse's peak by about 0.17 %), and its error: what of
+  // the raw peak is ringing.
   double peak_filtered = 0, err_force_filtered = 0;
   double mass = 0;           // kg, one sphere's (the meshed volume's: the same at every level)
   double speed = 0;          // m/s, the block approach speed (each sphere's in the pair)
