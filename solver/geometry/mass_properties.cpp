@@ -62,4 +62,14 @@ MassProperties mass_properties(const SurfaceMesh& mesh) {
   return m;
 }
 
+double surface_area(const SurfaceMesh& mesh) {
+  double a = 0;
+  for (Eigen::Index f = 0; f < mesh.faces.cols(); ++f) {
+    const Vec3 p = mesh.vertices.col(mesh.faces(0, f)), q = mesh.vertices.col(mesh.faces(1, f)),
+               r = mesh.vertices.col(mesh.faces(2, f));
+    a += 0.5 * (q - p).cross(r - p).norm();
+  }
+  return a;
+}
+
 }  // namespace asperity::geometry

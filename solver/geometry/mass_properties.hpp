@@ -34,4 +34,7 @@ struct MassProperties {
 // change them.
 MassProperties mass_properties(const SurfaceMesh& mesh);
 
+// The surface's area, m²: the sum of its triangles' (½ |(q − p) × (r − p)|).
+double surface_area(const SurfaceMesh& mesh);
+
 }  // namespace asperity::geometry

@@ -21,16 +21,6 @@
 namespace asperity::geometry {
 namespace {
 
-double surface_area(const SurfaceMesh& s) {
-  double a = 0;
-  for (Eigen::Index f = 0; f < s.faces.cols(); ++f) {
-    const Vec3 p = s.vertices.col(s.faces(0, f)), q = s.vertices.col(s.faces(1, f)),
-               r = s.vertices.col(s.faces(2, f));
-    a += 0.5 * (q - p).cross(r - p).norm();
-  }
-  return a;
-}
-
 double longest_edge(const SurfaceMesh& s) {
   double l = 0;
   for (Eigen::Index f = 0; f < s.faces.cols(); ++f)

@@ -18,16 +18,6 @@
 namespace asperity::geometry {
 namespace {
 
-double area(const SurfaceMesh& s) {
-  double a = 0;
-  for (Eigen::Index f = 0; f < s.faces.cols(); ++f) {
-    const Vec3 p = s.vertices.col(s.faces(0, f)), q = s.vertices.col(s.faces(1, f)),
-               r = s.vertices.col(s.faces(2, f));
-    a += 0.5 * (q - p).cross(r - p).norm();
-  }
-  return a;
-}
-
 // The least length of an edge over the mean of the other edges at its two vertices.
 double least_ring_ratio(const SurfaceMesh& s) {
   std::map<std::pair<int, int>, double> edges;
@@ -74,7 +64,7 @@ TEST(RemoveShortEdges, CollapsesALeftoverKeepingVolumeAndCount) {
           (s.vertices.col(s.faces(k, f)) - s.vertices.col(s.faces((k + 1) % 3, f))).norm();
   }
   const MassProperties before = mass_properties(s);
-  const double area_before = area(s);
+  const double area_before = surface_area(s);
 
   const ShortEdgeRepair r = remove_short_edges(s, {.ratio = 0.1});
   EXPECT_GE(r.short_edges, 1);
@@ -92,7 +82,7 @@ TEST(RemoveShortEdges, CollapsesALeftoverKeepingVolumeAndCount) {
   const MassProperties after = mass_properties(s);
   EXPECT_NEAR(after.volume, before.volume, 1e-12 * before.volume);
   EXPECT_LT(r.volume_change_rel, 1e-12);
-  EXPECT_LE(std::abs(area(s) - area_before), 1.5 * length * ring_edges);
+  EXPECT_LE(std::abs(surface_area(s) - area_before), 1.5 * length * ring_edges);
   // The volume the moved triangles sweep is at most 1.5 × length × their area (< 5 % of the
   // sphere's), so the centroid, volume-weighted, moves by far less than the edge itself.
   EXPECT_LT((after.centroid - before.centroid).norm(), length);
