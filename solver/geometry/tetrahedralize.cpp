@@ -23,6 +23,10 @@
 namespace asperity::geometry {
 namespace {
 
+// The unit material StepScales are measured in (E = 1 Pa, ν = 0.25, ρ = 1 kg/m³): one
+// definition, so that element_step_ratio divides by this material's P-wave speed.
+constexpr double kUnitYoung = 1, kUnitPoisson = 0.25, kUnitDensity = 1;
+
 constexpr int kFace[4][3] = {{1, 2, 3}, {0, 3, 2}, {0, 1, 3}, {0, 2, 1}};
 
 // Tetrahedra imposed on surface faces: lift k joins face `faces[k]` to interior point
@@ -177,8 +181,9 @@ StepScales step_scales(const TetMesh& mesh) {
   // A tetrahedron of no volume in floating point (make_tet_elements refuses it) has no step.
   try {
     out.element_frequency =
-        fem::element_critical_step(
-            fem::make_tet_elements(mesh.nodes, mesh.tets, 1.0, 0.25, 1.0, 0.0, "tetrahedralize"))
+        fem::element_critical_step(fem::make_tet_elements(mesh.nodes, mesh.tets, kUnitYoung,
+                                                          kUnitPoisson, kUnitDensity, 0.0,
+                                                          "tetrahedralize"))
             .omega_max;
   } catch (const InputError&) {
     out.element_frequency = std::numeric_limits<double>::infinity();
@@ -204,9 +209,10 @@ double element_step_ratio(const SurfaceMesh& surface, double element_frequency) 
       h = std::min(h, (surface.vertices.col(surface.faces(k, f)) -
                        surface.vertices.col(surface.faces((k + 1) % 3, f)))
                           .norm());
-  // Unit material (StepScales): c = √((λ + 2μ)/ρ) = √(E (1 − ν)/((1 + ν)(1 − 2ν))) = √1.2 at
-  // ν = 0.25, and the undamped step 2/ω.
-  return 2.0 / element_frequency * std::sqrt(1.2) / h;
+  // The unit material's P-wave speed c = √((λ + 2μ)/ρ) (√1.2 m/s), and the undamped step 2/ω.
+  const fem::Lame unit = fem::lame_from(kUnitYoung, kUnitPoisson);
+  const double c = std::sqrt((unit.lambda + 2 * unit.mu) / kUnitDensity);
+  return 2.0 / element_frequency * c / h;
 }
 
 long default_steiner_budget(const SurfaceMesh& surface, const ElementSize& size) {
