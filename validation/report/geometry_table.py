@@ -258,12 +258,17 @@ def tables(seq_rows, answer_rows):
     names = dict(METRICS)
     particles = sorted({(r["particle"], r["placement"]) for r in seq_rows})
     for m, label in METRICS:
-        ns = [r["resolution"] for r in seq_rows if r["metric"] == m and (r["particle"], r["placement"]) == particles[0]]
+        # Every N any particle has; a particle without a converged answer at one (a refined case
+        # failed) shows a dash there.
+        ns = sorted({r["resolution"] for r in seq_rows if r["resolution"] != "inf"}) + ["inf"]
         rows = []
         for p, pl in particles:
             cells = []
-            for r in seq_rows:
-                if r["metric"] != m or (r["particle"], r["placement"]) != (p, pl):
+            mine = {r["resolution"]: r for r in seq_rows if r["metric"] == m and (r["particle"], r["placement"]) == (p, pl)}
+            for n in ns:
+                r = mine.get(n)
+                if r is None:
+                    cells.append("-")
                     continue
                 if r["resolution"] == "inf":
                     cells.append(f"{g(r['value'])} ± {pct(r['limit_error'])}" if math.isfinite(r["value"])
@@ -278,7 +283,8 @@ def tables(seq_rows, answer_rows):
         out.append((f"{label[0].upper() + label[1:]}: the converged answer (the limit of the refined levels) at each "
                     "N, in brackets its change from the next coarser N (relative to the finer) and the observed "
                     "order in N^-1/2 (the surface edge length) of the three N ending there; the N -> infinity "
-                    "limit with its estimated error (Roache's 1.25 on the last correction).",
+                    "limit with its estimated error (Roache's 1.25 on the last correction). A dash: no converged answer "
+                    "at that N (a refined case failed).",
                     ["particle"] + [f"N = {n}" if n != "inf" else "N -> infinity" for n in ns], rows))
     asked = answer_rows[0]["resolution"] if answer_rows else ""
     out.append((f"Is {asked} triangles enough? Its converged answer against the N -> infinity limit (error, and the "
