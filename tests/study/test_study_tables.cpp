@@ -254,6 +254,25 @@ TEST(GeometryTerm, SkipsACoarserResolutionThatWasNotRefined) {
   EXPECT_DOUBLE_EQ(q->uncertainty.peak, q->discretization.peak);
 }
 
+TEST(StudySummary, CountsTheMeshingOncePerMeshNotPerRefinedLevel) {
+  // Three resolutions, each meshed once (mesh.json's mesh_cpu_seconds N/1000 s) and run at three
+  // levels (coarse, 0.08 and 0.04 R) of 1 s each: the meshing is 0.5 + 1 + 2 s, the total 9 + 3.5
+  // s (the refined cases read the coarse case's mesh.json; before, it was counted at each level).
+  const StudyDef def = geometry_def({});
+  const fs::path dir = write_study(def, "summary_meshing");
+  for (long n : def.resolutions) {
+    const fs::path mesh = dir / "meshes" / "p" / std::to_string(n);
+    fs::create_directories(mesh);
+    std::ofstream(mesh / "mesh.json")
+        << OJson{{"mesh_cpu_seconds", static_cast<double>(n) / 1000}}.dump();
+  }
+  const OJson summary =
+      write_study_summary(load_study_cases(def, dir), {}, OJson(), StudyOutcome{}, dir);
+  EXPECT_DOUBLE_EQ(summary["cpu_seconds_by_model"]["meshing"].get<double>(), 3.5);
+  EXPECT_DOUBLE_EQ(summary["cpu_seconds_by_model"]["fem"].get<double>(), 9.0);
+  EXPECT_DOUBLE_EQ(summary["cpu_seconds_total"].get<double>(), 12.5);
+}
+
 }  // namespace geometry_term_tests
 
 }  // namespace
