@@ -157,18 +157,33 @@ def geometry_sequence(answers):
 
 def verdict(err, unc, last_change, tol):
     """yes: within tol even at the far end of the limit's error; no: beyond it even at the near
-    end; else undecided. With no limit (the changes of N not falling), the last change of N is the
-    error estimate, as the study's own geometry term takes it: no when it exceeds tol, else
-    likely (one change, no rate behind it)."""
+    end, or the last change of N alone beyond it (a limit comes only from a monotone sequence, so
+    the error is at least that change); else undecided. With no limit (the changes of N not
+    falling), the last change of N is the error estimate, as the study's own geometry term takes
+    it: no when it exceeds tol, else likely (one change, no rate behind it)."""
+    if math.isfinite(last_change) and abs(last_change) > tol:
+        return "no"
     if math.isfinite(err):
         if abs(err) + unc <= tol:
             return "yes"
         if abs(err) - unc > tol:
             return "no"
         return "undecided"
-    if not math.isfinite(last_change):
-        return "undecided"
-    return "no" if abs(last_change) > tol else "likely"
+    return "likely" if math.isfinite(last_change) else "undecided"
+
+
+def median_verdict(verdicts):
+    """At the median, as the guidelines count it: met when half the particles are within. yes
+    when half say yes; likely when half say yes or likely; no when more than half say no (fewer
+    than half can be within); else undecided."""
+    half = math.ceil(len(verdicts) / 2)
+    if verdicts.count("yes") >= half:
+        return "yes"
+    if verdicts.count("yes") + verdicts.count("likely") >= half:
+        return "likely"
+    if verdicts.count("no") > len(verdicts) - half:
+        return "no"
+    return "undecided"
 
 
 def pct(x, digits=2):
@@ -218,21 +233,20 @@ def build(study):
             ests = [r["error_estimate"] for r in rs if math.isfinite(r["error_estimate"])]
             uncs = [r["limit_error"] for r in rs if math.isfinite(r["limit_error"])]
             sources = {r["estimate_from"] for r in rs}
-            from_limits = sources == {"limit"}
 
             def median(v):
                 return statistics.median(v) if v else math.nan
 
             row = {"particle": "median", "placement": placement, "metric": m, "resolution": rs[0]["resolution"],
-                   "value": math.nan, "limit": math.nan, "limit_error": median(uncs), "error": math.nan,
+                   "value": math.nan, "limit": math.nan, "limit_error": median(uncs) if len(uncs) == len(rs) else math.nan, "error": math.nan,
                    "last_change": median([abs(r["last_change"]) for r in rs if math.isfinite(r["last_change"])]),
                    "error_estimate": median(ests),
                    "estimate_from": sources.pop() if len(sources) == 1 else "limit or last change",
                    "discretization_error": median([r["discretization_error"] for r in rs
                                                    if math.isfinite(r["discretization_error"])])}
             for tol in TOLERANCES:
-                v = verdict(row["error_estimate"], row["limit_error"] if uncs else 0.0, row["last_change"], tol)
-                row[f"within_{round(100 * tol)}pct"] = "likely" if v == "yes" and not from_limits else v
+                key = f"within_{round(100 * tol)}pct"
+                row[key] = median_verdict([r[key] for r in rs])
             medians.append(row)
     return seq_rows, answer_rows + medians
 
@@ -289,10 +303,14 @@ def tables(seq_rows, answer_rows):
     asked = answer_rows[0]["resolution"] if answer_rows else ""
     out.append((f"Is {asked} triangles enough? Its converged answer against the N -> infinity limit (error, and the "
                 "limit's estimated error). yes: within the tolerance even at the far end of the limit's error; no: "
-                "beyond it even at the near end; undecided between. With no limit (the changes of N not falling), the "
-                "last change of N (to the finest) is the error estimate, as the study's geometry term takes it: no "
-                "when beyond the tolerance, likely when within it (one change, no rate behind it). The "
-                "discretization error (h) is the converged answer's own, from its extrapolation in element size.",
+                "beyond it even at the near end, or the last change of N (to the finest) alone beyond it (a limit "
+                "comes only from a monotone sequence, whose remaining error is at least that change); undecided "
+                "between. With no limit (the changes of N not falling), the last change of N is the error estimate, "
+                "as the study's geometry term takes it: no when beyond the tolerance, likely when within it (one "
+                "change, no rate behind it). The median row counts as the guidelines do (met when half the "
+                "particles are within): yes or likely when half the particles say so, no when more than half say "
+                "no; its columns are medians of |value|. The discretization error (h) is the converged answer's "
+                "own, from its extrapolation in element size.",
                 ["particle", "metric", f"error of {asked}", "limit's error", "last change of N",
                  f"error estimate of {asked} (from)", "discretization error (h)", "1 %", "2 %", "5 %"],
                 [[r["particle"], names[r["metric"]], pct(r["error"]), pct(r["limit_error"]), pct(r["last_change"]),
