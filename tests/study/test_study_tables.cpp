@@ -1,5 +1,6 @@
 // The study's table units on hand-made inputs: the published reference data read from
-// data/study/, its refusal of a broken file, and the per-particle classes.
+// data/study/, its refusal of a broken file, the per-particle classes, the reference's Richardson
+// extrapolation and its geometry term.
 #include <cmath>
 #include <filesystem>
 #include <fstream>
@@ -157,6 +158,122 @@ TEST(Richardson, NonMonotoneThreeLevelsFallBackToTheBracket) {
 }
 
 }  // namespace richardson_tests
+
+// The geometry term of the reference (tables/study_cases.hpp, docs/study.md "Guidelines" and "The
+// geometry term"): the change of the converged (extrapolated) answer from the next coarser
+// resolution that was refined, on hand-made case folders with known values.
+namespace geometry_term_tests {
+
+// A finished case: case.json (the done marker) and summary.json with the measures.
+void write_case(const fs::path& study, const CaseKey& k, double peak, double impulse,
+                double duration) {
+  const fs::path dir = study / "cases" / k.particle / k.dir_name();
+  fs::create_directories(dir);
+  std::ofstream(dir / "summary.json") << OJson{
+      {"status", "ok"},
+      {"peak_force", peak},
+      {"impulse", impulse},
+      {"contact_duration", duration},
+      {"first_contact_time", 5e-5},
+      {"cpu_seconds_thread", 1.0}}.dump();
+  std::ofstream(dir / "case.json") << OJson{{"start_gap", 1e-4}}.dump();
+}
+
+// Two refined levels at h = 0.08 and 0.04 R (sizes halving): the limit is the middle of the
+// extrapolations at orders 1.2 and 2.7 (docs/study.md), written out here, not via richardson().
+double two_level_limit(double coarse_h, double fine_h) {
+  const double d = fine_h - coarse_h;
+  return fine_h + 0.5 * d * (1 / (std::pow(2.0, 1.2) - 1) + 1 / (std::pow(2.0, 2.7) - 1));
+}
+
+// Peak force of resolution n at refined level l (1: 0.08 R, 2: 0.04 R; 0: coarse): the shape's
+// own answer falls with n, the element size's correction is the same fraction at every n.
+double peak_of(long n, int level) {
+  const double shape = n == 500 ? 1200.0 : n == 1000 ? 1100.0 : 1000.0;
+  return level == 0 ? 1.3 * shape : level == 1 ? 1.06 * shape : 1.02 * shape;
+}
+
+StudyDef geometry_def(std::vector<long> refined) {
+  StudyDef def;
+  def.particles = {{.name = "p"}};
+  def.resolutions = {500, 1000, 2000};
+  def.reference = 2000;
+  def.models = {ModelKind::fem};
+  def.placements = {Placement::lowest};
+  def.refinement.sizes = {0.08, 0.04};
+  def.refinement.resolutions = std::move(refined);
+  return def;
+}
+
+fs::path write_study(const StudyDef& def, const std::string& name) {
+  const fs::path dir = scratch(name);
+  for (const CaseKey& k : plan_cases(def)) {
+    // impulse and duration move with the level too, by other fractions
+    const double peak = peak_of(k.resolution, k.level);
+    write_case(dir, k, peak, 1e-4 * peak * (1 + 0.01 * k.level), 1e-4 * (1 + 0.1 * k.level));
+  }
+  return dir;
+}
+
+TEST(GeometryTerm, ChangeOfTheLimitFromTheNextCoarserRefinedResolution) {
+  // Every resolution refined: the reference is the limit at 2000, its geometry term the limit's
+  // change from 1000's, |L1000 − L2000| / L2000, and its uncertainty √(d² + g²).
+  const StudyDef def = geometry_def({});
+  const StudyCases s = load_study_cases(def, write_study(def, "geometry_all"));
+  const StudyCases::Reference* r = s.reference("p", Placement::lowest);
+  ASSERT_NE(r, nullptr);
+  const double l2000 = two_level_limit(peak_of(2000, 1), peak_of(2000, 2));
+  const double l1000 = two_level_limit(peak_of(1000, 1), peak_of(1000, 2));
+  // 1e-12: the same few operations in another order (round-off only)
+  EXPECT_NEAR(r->values.peak, l2000, 1e-12 * l2000);
+  EXPECT_EQ(r->geometry_resolution, 1000);
+  const double g = std::abs(l1000 - l2000) / l2000;  // 10 %: the shapes' 1100 against 1000
+  EXPECT_NEAR(r->geometry.peak, g, 1e-12);
+  EXPECT_NEAR(r->geometry.peak, 0.1, 1e-12);  // the fractions of the level cancel
+  EXPECT_NEAR(r->uncertainty.peak, std::hypot(r->discretization.peak, g), 1e-15);
+  // The sequence at 1000 carries the limit the term compares with.
+  EXPECT_NEAR(s.sequence("p", 1000, Placement::lowest)->limit.peak, l1000, 1e-12 * l1000);
+}
+
+TEST(GeometryTerm, SkipsACoarserResolutionThatWasNotRefined) {
+  // 1000 only coarse: its answer is no converged one, so the term compares with 500's limit.
+  const StudyDef def = geometry_def({500, 2000});
+  const StudyCases s = load_study_cases(def, write_study(def, "geometry_skip"));
+  const StudyCases::Reference* r = s.reference("p", Placement::lowest);
+  ASSERT_NE(r, nullptr);
+  EXPECT_EQ(r->geometry_resolution, 500);
+  EXPECT_NEAR(r->geometry.peak, 0.2, 1e-12);  // the shapes' 1200 against 1000
+  // Only the finest resolution refined (the default study): no geometry term, and the
+  // uncertainty is the discretization term alone.
+  const StudyDef only = geometry_def({2000});
+  const StudyCases t = load_study_cases(only, write_study(only, "geometry_none"));
+  const StudyCases::Reference* q = t.reference("p", Placement::lowest);
+  ASSERT_NE(q, nullptr);
+  EXPECT_EQ(q->geometry_resolution, 0);
+  EXPECT_TRUE(std::isnan(q->geometry.peak));
+  EXPECT_DOUBLE_EQ(q->uncertainty.peak, q->discretization.peak);
+}
+
+TEST(StudySummary, CountsTheMeshingOncePerMeshNotPerRefinedLevel) {
+  // Three resolutions, each meshed once (mesh.json's mesh_cpu_seconds N/1000 s) and run at three
+  // levels (coarse, 0.08 and 0.04 R) of 1 s each: the meshing is 0.5 + 1 + 2 s, the total 9 + 3.5
+  // s (the refined cases read the coarse case's mesh.json; before, it was counted at each level).
+  const StudyDef def = geometry_def({});
+  const fs::path dir = write_study(def, "summary_meshing");
+  for (long n : def.resolutions) {
+    const fs::path mesh = dir / "meshes" / "p" / std::to_string(n);
+    fs::create_directories(mesh);
+    std::ofstream(mesh / "mesh.json")
+        << OJson{{"mesh_cpu_seconds", static_cast<double>(n) / 1000}}.dump();
+  }
+  const OJson summary =
+      write_study_summary(load_study_cases(def, dir), {}, OJson(), StudyOutcome{}, dir);
+  EXPECT_DOUBLE_EQ(summary["cpu_seconds_by_model"]["meshing"].get<double>(), 3.5);
+  EXPECT_DOUBLE_EQ(summary["cpu_seconds_by_model"]["fem"].get<double>(), 9.0);
+  EXPECT_DOUBLE_EQ(summary["cpu_seconds_total"].get<double>(), 12.5);
+}
+
+}  // namespace geometry_term_tests
 
 }  // namespace
 }  // namespace asperity::study::tables

@@ -26,6 +26,8 @@ matplotlib.rcParams["svg.fonttype"] = "path"
 import matplotlib.pyplot as plt  # noqa: E402
 import matplotlib.ticker  # noqa: E402
 
+import geometry_table  # noqa: E402  (beside this file)
+
 TABLES = ["cases.csv", "references.csv", "classification.csv", "particle_classes.csv", "cpu_fit.csv",
           "candidates.csv", "guidelines.csv"]
 MODEL_COLOURS = {"fem": "tab:blue", "rigid": "tab:orange", "rigid-penalty": "tab:red", "sphere": "tab:green",
@@ -612,6 +614,24 @@ def penalty_section(out, pen_dir, doc):
         doc.image("penalty_sensitivity.png", "Peak force against resolution, one line per penalty alpha")
 
 
+def geometry_section(doc, study, out):
+    """The geometry term (geometry_table.py: OUT/geometry.csv, geometry_answer.csv, geometry.md) when
+    the study refines two or more resolutions (data/study/geometry.json): the converged answer's
+    sequence in N and whether the finest-but-one N is enough. First, because it is such a study's
+    question; a study refining one resolution (the default) has no such section."""
+    t = geometry_table.write(study, out)
+    if t is None:
+        return
+    doc.h(2, "The geometry term")
+    doc.p("Each resolution N refined at its strike point gives a converged answer (the limit in element size), "
+          "which isolates the particle's shape from the elements; along N these answers say whether the finest "
+          "geometry is fine enough (docs/study.md, 'The geometry term'). Tables: geometry.csv, geometry_answer.csv, "
+          "geometry.md.")
+    for caption, header, rows in t:
+        doc.p(caption)
+        doc.table(header, rows)
+
+
 def answer_section(doc, guidelines, published):
     """The report's first section: to get X % on a metric, what to use, with the error and the reference's
     uncertainty, beside the published study's CPU."""
@@ -784,6 +804,7 @@ def main():
 
     doc = Doc()
     doc.h(1, f"Particle-geometry study: {summary['study']}")
+    geometry_section(doc, a.study, a.out)
     answer_section(doc, guidelines, summary["published"])
     axes_section(doc, cases)
     with open(os.path.join(a.study, "study.json")) as fh:

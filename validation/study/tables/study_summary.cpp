@@ -23,7 +23,9 @@ std::pair<double, std::map<std::string, double>> cpu_totals(const StudyCases& s)
       total += c.cpu;
       by_model[model_name(c.key.model)] += c.cpu;
     }
-    if (c.mesh.is_object() && !is_sphere(c.key.model) &&
+    // One case per mesh: the first placement's coarse case of the first model (a refined fem
+    // case reads the same mesh.json).
+    if (c.mesh.is_object() && !is_sphere(c.key.model) && c.key.level == 0 &&
         c.key.placement == def.placements.front() && c.key.model == def.models.front()) {
       total += c.mesh.value("mesh_cpu_seconds", 0.0);
       by_model["meshing"] += c.mesh.value("mesh_cpu_seconds", 0.0);
