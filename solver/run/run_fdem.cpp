@@ -31,7 +31,8 @@ namespace {
 constexpr double kDefaultContactFactor = 2;
 
 // `deformable`: the body's tetrahedra are finite elements. Only then does the mesher's repair of
-// elements that set a short step (own-apex lifting, TetOptions::min_element_step_ratio) pay: a
+// elements that set a short step (own-apex lifting, TetOptions::min_element_step_ratio and
+// min_mean_edge_step_ratio) pay: a
 // rigid or fixed body's tetrahedra carry no elastic waves, and the repair doubled the set-up of a
 // 2000-vertex rigid hull (validation/cases/polyhedra: 7 -> 15 s) for nothing.
 TetMesh mesh_body(const scene::MeshShape& m, const std::string& key, bool deformable) {
@@ -40,7 +41,7 @@ TetMesh mesh_body(const scene::MeshShape& m, const std::string& key, bool deform
   o.faces = m.faces;
   o.read.scale = m.scale;
   o.tetrahedralize = true;
-  if (!deformable) o.tet.min_element_step_ratio = 0;
+  if (!deformable) o.tet.min_element_step_ratio = o.tet.min_mean_edge_step_ratio = 0;
   o.tet.element_size.size = m.element_size;
   if (m.element_size_focus) {
     o.tet.element_size.focus = *m.element_size_focus;

@@ -74,6 +74,39 @@ TEST(HertzPair, HeadOnPairConvergesAndMatchesTheBlock) {
   EXPECT_NEAR(pair.duration.limit, block.duration.limit, 0.02);
 }
 
+// The head-on pair at a second contact size, a/R = 0.08 (the block's series point nearest the
+// issue's middle): the symmetric problem must give the block's answer at every contact size, not
+// only at the one the pair was first run at. The same gates as at 0.15: the pair's filtered peak
+// and duration fall with every level at an order above 0.75, momentum to round-off, the pair and
+// the block level by level within 0.5 % (the contact layers' own compliances differ by a few
+// tenths of a percent, as above), the two limits within 2 % of each other and the pair's within
+// 2 % of the dynamic finite sphere in peak and duration. Run end to end (2026-12-02, one core of
+// the shared 2-core machine at load 4–5): passed, 2 415 s of CPU (69 min wall); the pair's run
+// CPU 305, 654, 1 203 s at s = 2, √2, 1 (16 547, 34 328, 80 249 tetrahedra per sphere), the
+// block's 19, 58, 100 s. Pair filtered peak +6.15, +4.50, +3.85 % (order 2.70, limit +3.43 %),
+// duration −6.30, −4.35, −3.73 % (order 3.30, limit −3.44 %); raw peak +6.81, +5.34, +4.58 %;
+// momentum 7e-17 to 1.6e-15 of m v. The block level by level +6.03 / −6.14, +4.44 / −4.27,
+// +3.81 / −3.64 % (0.04–0.16 point from the pair), limits +3.38 / −3.33 %. The dynamic finite
+// sphere: +3.36 / −2.52 % (the pair's limits 0.07 and 0.92 point from it).
+TEST(HertzPair, HeadOnPairMatchesTheBlockAtASmallerContact) {
+  const double speed = hertz::speed_for(0.08, scenes::rubbery());
+  const Sequence pair = sequence(Setup::pair, speed, {2.0, kRatio, 1.0});
+  const Sequence block = sequence(Setup::block, speed, {2.0, kRatio, 1.0});
+  expect_converges(pair, "pair a/R 0.08", /*filtered=*/true, /*own_error=*/false);
+  expect_matches_finite_sphere(pair, "pair a/R 0.08", /*filtered=*/true);
+  for (const Level& x : pair.levels) EXPECT_LT(x.momentum, 1e-12) << "s " << x.s;
+  for (std::size_t i = 0; i < pair.levels.size(); ++i) {
+    std::printf("  level %zu: pair %+.4f / %+.4f, block %+.4f / %+.4f (filtered peak / duration)\n",
+                i, pair.levels[i].err_force_filtered, pair.levels[i].err_duration,
+                block.levels[i].err_force_filtered, block.levels[i].err_duration);
+    EXPECT_NEAR(pair.levels[i].err_duration, block.levels[i].err_duration, 0.005) << "level " << i;
+    EXPECT_NEAR(pair.levels[i].err_force_filtered, block.levels[i].err_force_filtered, 0.005)
+        << "level " << i;
+  }
+  EXPECT_NEAR(pair.peak_filtered.limit, block.peak_filtered.limit, 0.02);
+  EXPECT_NEAR(pair.duration.limit, block.duration.limit, 0.02);
+}
+
 // "Converges to Hertz": Hertz is the law of two half-spaces, so the finite sphere's limit may
 // differ from it by a term that vanishes with the contact size a/R. The Richardson limits of the
 // block sequences at a/R = 0.05, 0.08, 0.107, 0.15 (s = 2, √2, 1; the contact zone's elements and

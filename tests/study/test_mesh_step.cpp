@@ -4,6 +4,7 @@
 // shortest surface edge, c the P-wave speed): reports/fem/mesh_step.md (mesh_step_survey).
 #include <algorithm>
 #include <cmath>
+#include <stdexcept>
 #include <string>
 #include <utility>
 #include <vector>
@@ -11,7 +12,11 @@
 #include <gtest/gtest.h>
 
 #include "geometry/mass_properties.hpp"
+#include "geometry/mesh_pipeline.hpp"
+#include "geometry/random_particle.hpp"
 #include "geometry/tet_quality.hpp"
+#include "geometry/tetrahedralize.hpp"
+#include "io/json_file.hpp"
 #include "study/mesh_step_survey.hpp"
 #include "study/study_def.hpp"
 #include "study/study_meshes.hpp"
@@ -86,6 +91,62 @@ TEST(MeshStep, NoSliverSetsTheElementStep) {
     EXPECT_NEAR(geometry::tet_quality(p.tets).volume_sum, v, 1e-12 * v);
   }
   RecordProperty("lowest_element_ratio", std::to_string(lowest));
+}
+
+// The cost repair (issue 11, item 6; TetOptions::min_mean_edge_step_ratio): on the particles of
+// the set whose 1000-face mesh at the bench_fem scene's 5 cm had an element step below 0.1 h̄/c
+// (h̄ the mean surface edge), the lifting is retried under other settings and the mesh of least
+// tetrahedra × element frequency whose contact step is no shorter is kept. Asserted on the
+// three whose collision cost it halved (the settings were chosen on them: rock_24, ballast_13,
+// rock_06; measured work tetrahedra × steps 0.51–0.54 of before, reports/fem/collision_cost.md)
+// and on two it was not tuned on (rock_16, rock_46: 0.91 and 0.94): the work never rises, the
+// contact step never shortens, the surface is kept; on the tuned three the element step at least
+// 1.5× longer (measured 1.92–2.01×). A mesh at or above the bound (rock_02, 0.149) is the same
+// mesh, bit for bit, with the repair on or off.
+TEST(MeshStep, CostRepairShortensTheSlowMeshesAndLeavesTheRest) {
+  const io::Json set =
+      io::read_json_file(std::string(ASPERITY_SOURCE_DIR) + "/data/particles/set.json");
+  const auto mesh = [&](const std::string& name, double ratio) {
+    for (const io::Json& p : set.at("particles")) {
+      if (p.at("name").get<std::string>() != name) continue;
+      const geometry::ParticleDef pd{.seed = p.at("seed").get<unsigned long long>(),
+                                     .size = 0.05,
+                                     .elongation = p.at("elongation").get<double>(),
+                                     .flatness = p.at("flatness").get<double>(),
+                                     .angularity = p.at("angularity").get<double>(),
+                                     .roughness = p.at("roughness").get<double>(),
+                                     .faces = p.at("faces").get<long>()};
+      geometry::PipelineOptions o;
+      o.faces = 1000;
+      o.tet.min_mean_edge_step_ratio = ratio;
+      return geometry::prepare_particle(geometry::random_particle(pd), name, o);
+    }
+    throw std::runtime_error("no particle " + name);
+  };
+  for (const char* name : {"rock_24", "ballast_13", "rock_06", "rock_16", "rock_46"}) {
+    SCOPED_TRACE(name);
+    const geometry::PreparedParticle off = mesh(name, 0), on = mesh(name, 0.1);
+    const geometry::StepScales a = geometry::step_scales(off.tets),
+                               b = geometry::step_scales(on.tets);
+    ASSERT_LT(geometry::mean_edge_step_ratio(off.surface, a.element_frequency), 0.1);
+    const double work_a = static_cast<double>(off.tets.tets.cols()) * a.element_frequency;
+    const double work_b = static_cast<double>(on.tets.tets.cols()) * b.element_frequency;
+    EXPECT_LE(work_b, work_a);
+    EXPECT_LE(b.contact_frequency2, a.contact_frequency2);
+    EXPECT_TRUE(on.tets.surface == off.tets.surface);
+    const double v = geometry::mass_properties(on.surface).volume;
+    EXPECT_NEAR(geometry::tet_quality(on.tets).volume_sum, v, 1e-12 * v);
+    if (std::string(name) == "rock_24" || std::string(name) == "ballast_13" ||
+        std::string(name) == "rock_06") {
+      EXPECT_LE(b.element_frequency, a.element_frequency / 1.5);
+    }
+  }
+  const geometry::PreparedParticle off = mesh("rock_02", 0), on = mesh("rock_02", 0.1);
+  EXPECT_GE(geometry::mean_edge_step_ratio(off.surface,
+                                           geometry::step_scales(off.tets).element_frequency),
+            0.1);
+  EXPECT_TRUE(on.tets.nodes == off.tets.nodes);
+  EXPECT_TRUE(on.tets.tets == off.tets.tets);
 }
 
 }  // namespace
