@@ -16,9 +16,13 @@ matplotlib's 3-D polygons and 2-D triangles need nothing beyond deps/debian-pack
                                   N triangles side by side: DIR/pictures/impact_PARTICLE.png,
                                   which `asperity report` shows beside the force curves
 
+Each picture (its runs and its drawing) is made in a process of its own, as many at once as there
+are cores.
+
 Exit 2 with one line for a missing input, 1 when a run fails.
 """
 import argparse
+import concurrent.futures
 import json
 import math
 import os
@@ -284,58 +288,59 @@ def surface_panel(ax, frame, values, vmax, cmap, title):
     plt.colorbar(sm, ax=ax, shrink=0.6, pad=0.0)
 
 
-def study_pictures(asperity, study, resolution, placement, work):
+def study_plan(study, resolution, placement):
+    """The study's particles with fem and rigid cases at `resolution`: (particle, placement, cases)."""
     cases = os.path.join(study, "cases")
     if not os.path.isdir(cases):
         raise BadInput(f"{study}: no cases/ folder (not an asperity study folder)")
-    out_dir = os.path.join(study, "pictures")
-    os.makedirs(out_dir, exist_ok=True)
-    made = []
+    plan = []
     for particle in sorted(os.listdir(cases)):
         # Without --placement, the first placement the study ran for this particle.
         placements = [placement] if placement else ["centroid", "lowest"]
         placement_here = next((p for p in placements if all(
             os.path.exists(os.path.join(cases, particle, f"{m}-{resolution}-{p}", "scene.json"))
             for m in ("fem", "rigid"))), placements[0])
-        runs = {}
-        for model in ("fem", "rigid"):
-            case = os.path.join(cases, particle, f"{model}-{resolution}-{placement_here}")
-            scene = os.path.join(case, "scene.json")
-            if not os.path.exists(scene):
-                break
-            out = os.path.join(work, particle, model)
-            summary = run_scene(asperity, scene, out)
-            with open(os.path.join(case, "summary.json")) as fh:
-                study_peak = json.load(fh).get("peak_force")
-            if study_peak and abs(summary["peak_force"] / study_peak - 1) > 1e-9:
-                print(f"impact_pictures: warning: {particle} {model}: peak {summary['peak_force']} N, "
-                      f"the study's {study_peak} N (a different build?)", file=sys.stderr)
-            runs[model] = (summary, Frame(os.path.join(out, "vtk", "bodies_peak.vtu")))
-        if len(runs) < 2:
-            continue
-        fem, rigid = runs["fem"][1], runs["rigid"][1]
-        # Each surface triangle takes its tetrahedron's stress, and the mean of its nodes' pressure.
-        p_fem = fem.pressure[fem.tris].mean(axis=1)
-        p_rigid = rigid.pressure[rigid.tris].mean(axis=1)
-        p_max = max(p_fem.max(), p_rigid.max()) / 1e6
-        fig = plt.figure(figsize=(13, 4.6))
-        vm = fem.von_mises[fem.tri_cell] / 1e6
-        surface_panel(fig.add_subplot(1, 3, 1, projection="3d"), fem, vm, vm.max(), "viridis",
-                      f"fem: von Mises stress (MPa), max {vm.max():.0f}")
-        surface_panel(fig.add_subplot(1, 3, 2, projection="3d"), fem, p_fem / 1e6, p_max, "YlOrRd",
-                      f"fem: contact pressure (MPa)\npeak force {runs['fem'][0]['peak_force']:.0f} N")
-        surface_panel(fig.add_subplot(1, 3, 3, projection="3d"), rigid, p_rigid / 1e6, p_max, "YlOrRd",
-                      (f"rigid: contact pressure (MPa)\npeak force {runs['rigid'][0]['peak_force']:.0f} N"
-                       if p_rigid.max() > 0 else
-                       # The volume laws act on the body at the overlap's centroid: no nodal forces.
-                       f"rigid (volume law): one force at the overlap centroid,\nno surface pressure; "
-                       f"peak force {runs['rigid'][0]['peak_force']:.0f} N"))
-        fig.suptitle(f"{particle}, {resolution} triangles, placed by {placement_here}: the peak-force frames, "
-                     "seen from below", fontsize=10)
-        fig.subplots_adjust(left=0.01, right=0.97, top=0.86, bottom=0.02, wspace=0.08)
-        save(fig, out_dir, f"impact_{particle}", svg=False)
-        made.append(particle)
-    return made
+        dirs = {m: os.path.join(cases, particle, f"{m}-{resolution}-{placement_here}") for m in ("fem", "rigid")}
+        if all(os.path.exists(os.path.join(d, "scene.json")) for d in dirs.values()):
+            plan.append((particle, placement_here, dirs))
+    return plan
+
+
+def particle_picture(asperity, particle, placement_here, dirs, resolution, out_dir, work):
+    """One particle's fem and rigid impact side by side: out_dir/impact_PARTICLE.png."""
+    runs = {}
+    for model in ("fem", "rigid"):
+        case = dirs[model]
+        out = os.path.join(work, particle, model)
+        summary = run_scene(asperity, os.path.join(case, "scene.json"), out)
+        with open(os.path.join(case, "summary.json")) as fh:
+            study_peak = json.load(fh).get("peak_force")
+        if study_peak and abs(summary["peak_force"] / study_peak - 1) > 1e-9:
+            print(f"impact_pictures: warning: {particle} {model}: peak {summary['peak_force']} N, "
+                  f"the study's {study_peak} N (a different build?)", file=sys.stderr)
+        runs[model] = (summary, Frame(os.path.join(out, "vtk", "bodies_peak.vtu")))
+    fem, rigid = runs["fem"][1], runs["rigid"][1]
+    # Each surface triangle takes its tetrahedron's stress, and the mean of its nodes' pressure.
+    p_fem = fem.pressure[fem.tris].mean(axis=1)
+    p_rigid = rigid.pressure[rigid.tris].mean(axis=1)
+    p_max = max(p_fem.max(), p_rigid.max()) / 1e6
+    fig = plt.figure(figsize=(13, 4.6))
+    vm = fem.von_mises[fem.tri_cell] / 1e6
+    surface_panel(fig.add_subplot(1, 3, 1, projection="3d"), fem, vm, vm.max(), "viridis",
+                  f"fem: von Mises stress (MPa), max {vm.max():.0f}")
+    surface_panel(fig.add_subplot(1, 3, 2, projection="3d"), fem, p_fem / 1e6, p_max, "YlOrRd",
+                  f"fem: contact pressure (MPa)\npeak force {runs['fem'][0]['peak_force']:.0f} N")
+    surface_panel(fig.add_subplot(1, 3, 3, projection="3d"), rigid, p_rigid / 1e6, p_max, "YlOrRd",
+                  (f"rigid: contact pressure (MPa)\npeak force {runs['rigid'][0]['peak_force']:.0f} N"
+                   if p_rigid.max() > 0 else
+                   # The volume laws act on the body at the overlap's centroid: no nodal forces.
+                   f"rigid (volume law): one force at the overlap centroid,\nno surface pressure; "
+                   f"peak force {runs['rigid'][0]['peak_force']:.0f} N"))
+    fig.suptitle(f"{particle}, {resolution} triangles, placed by {placement_here}: the peak-force frames, "
+                 "seen from below", fontsize=10)
+    fig.subplots_adjust(left=0.01, right=0.97, top=0.86, bottom=0.02, wspace=0.08)
+    save(fig, out_dir, f"impact_{particle}", svg=False)
+    return particle
 
 
 def main():
@@ -353,14 +358,25 @@ def main():
         raise BadInput(f"{a.study}: --study: no such folder")
     work = tempfile.mkdtemp(prefix="asperity_pictures_")
     try:
+        # Each picture (its runs, then its drawing) in a process of its own, on every core: the
+        # particles first, the Hertz picture (the cheapest) last.
+        plan = study_plan(a.study, a.resolution, a.placement) if a.study else []
+        if a.study:
+            os.makedirs(os.path.join(a.study, "pictures"), exist_ok=True)
         if a.hertz:
             os.makedirs(a.hertz_out, exist_ok=True)
-            h = hertz_picture(a.asperity, a.hertz, a.hertz_out, work)
-            print(f"impact_pictures: {a.hertz_out}/hertz_contact_zone.png: peak {h['peak_force']:.1f} N "
-                  f"(Hertz {h['hertz_impact_force']:.1f} N), a = {h['contact_radius_hertz'] * 1e3:.2f} mm, "
-                  f"p0 = {h['p0_hertz'] / 1e3:.0f} kPa, nodal max {h['max_pressure'] / 1e3:.0f} kPa")
+        with concurrent.futures.ProcessPoolExecutor(max_workers=os.cpu_count() or 1) as pool:
+            pictures = [pool.submit(particle_picture, a.asperity, particle, placement_here, dirs,
+                                    a.resolution, os.path.join(a.study, "pictures"), work)
+                        for particle, placement_here, dirs in plan]
+            hertz = pool.submit(hertz_picture, a.asperity, a.hertz, a.hertz_out, work) if a.hertz else None
+            if hertz:
+                h = hertz.result()
+                print(f"impact_pictures: {a.hertz_out}/hertz_contact_zone.png: peak {h['peak_force']:.1f} N "
+                      f"(Hertz {h['hertz_impact_force']:.1f} N), a = {h['contact_radius_hertz'] * 1e3:.2f} mm, "
+                      f"p0 = {h['p0_hertz'] / 1e3:.0f} kPa, nodal max {h['max_pressure'] / 1e3:.0f} kPa")
+            made = [f.result() for f in pictures]
         if a.study:
-            made = study_pictures(a.asperity, a.study, a.resolution, a.placement, work)
             print(f"impact_pictures: {len(made)} particle pictures in {a.study}/pictures")
             if not made:
                 print(f"impact_pictures: warning: no particle of {a.study} has fem and rigid cases at "

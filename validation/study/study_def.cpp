@@ -309,12 +309,13 @@ StudyDef load_study(const fs::path& file) {
 }  // namespace asperity::study
 
 namespace asperity::study {
-namespace {
 
 nlohmann::ordered_json material_json(const Material& m) {
   return {
       {"density", m.density}, {"young", m.young}, {"poisson", m.poisson}, {"friction", m.friction}};
 }
+
+namespace {
 
 template <class T>
 nlohmann::ordered_json optional_json(const std::optional<T>& v) {

@@ -95,6 +95,10 @@ StudyDef load_study(const std::filesystem::path& file);
 // lies: a mesh file is named by its file name). A study folder keeps it as DIR/study.json.
 nlohmann::ordered_json definition_json(const StudyDef& def);
 
+// A material as a scene's "materials" entry and as the definition keeps it: density, young,
+// poisson, friction.
+nlohmann::ordered_json material_json(const Material& m);
+
 // "" when `a` and `b` are equal, else where they first differ and how, e.g.
 // "\"resolutions\" is [100,250] there, [100,250,500] here" (a: there, b: here).
 std::string first_difference(const nlohmann::json& a, const nlohmann::json& b,

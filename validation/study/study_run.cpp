@@ -149,11 +149,6 @@ double case_weight(const CaseKey& c) {
   return 1;
 }
 
-OJson material_json(const Material& m) {
-  return {
-      {"density", m.density}, {"young", m.young}, {"poisson", m.poisson}, {"friction", m.friction}};
-}
-
 fs::path mesh_dir(const fs::path& out, const std::string& particle, long faces) {
   return out / "meshes" / particle / std::to_string(faces);
 }
