@@ -162,16 +162,9 @@ def check_inputs(study):
     check_json(os.path.join(study, "guidelines.json"))
 
 
-def read_csv(path):
-    with open(path, newline="") as f:
-        return list(csv.DictReader(f))
-
-
-def num(x):
-    try:
-        return float(x)
-    except (TypeError, ValueError):
-        return math.nan
+# The two readers geometry_table.py (imported above) defines for the same tables.
+read_csv = geometry_table.read_csv
+num = geometry_table.num
 
 
 def fmt(x, digits=4):
