@@ -10,6 +10,7 @@
 #include "core/mesh.hpp"
 #include "fdem/fdem_world.hpp"
 #include "geometry/mesh_pipeline.hpp"
+#include "geometry/random_particle.hpp"
 #include "study/study_def.hpp"
 
 namespace asperity::study {
@@ -18,6 +19,10 @@ namespace asperity::study {
 // the origin, scaled to def.particle_size when given, rotated to the study's orientation.
 // InputError for a particle that cannot be made.
 SurfaceMesh particle_source(const StudyDef& def, std::size_t index);
+
+// A generated particle's definition (ParticleSource's geometry::ParticleDef fields, as listed in
+// the particle set), before particle_source centres, orients and scales its surface.
+geometry::ParticleDef particle_def(const ParticleSource& p);
 
 // That surface simplified to exactly `faces` triangles and tetrahedralized with the study's
 // options (the mesher's defaults: element size = surface). As geometry::prepare_particle throws.
