@@ -80,6 +80,36 @@ std::string switches_of(const TetgenJob& job) {
 
 }  // namespace
 
+// The failed check in an assert() message ("tetgen: tetgen.cxx:12345: int tetgenmesh::f(...):
+// Assertion `x' failed."): ": tetgen.cxx:12345, in tetgenmesh::f, `x'", or "" when the
+// child's stderr holds none.
+std::string tetgen_assertion(const std::string& errors) {
+  const std::size_t at = errors.find("Assertion `");
+  if (at == std::string::npos) return "";
+  const std::size_t end = errors.find('\'', at + 11);
+  const std::string check = errors.substr(at + 10, end == std::string::npos ? 80 : end - at - 9);
+  std::size_t line_start = errors.rfind('\n', at);
+  line_start = line_start == std::string::npos ? 0 : line_start + 1;
+  std::string where = errors.substr(line_start, at - line_start);
+  // "prog: file:line: signature: " -> "file:line" and the function's name
+  std::string file_line, function;
+  if (const std::size_t c = where.find(": "); c != std::string::npos) {
+    const std::string rest = where.substr(c + 2);
+    const std::size_t c2 = rest.find(':', rest.find(':') + 1);
+    file_line = rest.substr(0, c2);
+    if (const std::size_t slash = file_line.rfind('/'); slash != std::string::npos)
+      file_line.erase(0, slash + 1);
+    const std::size_t paren = rest.find('(', c2);
+    const std::size_t name = rest.rfind(' ', paren);
+    if (paren != std::string::npos && name != std::string::npos && name > c2)
+      function = rest.substr(name + 1, paren - name - 1);
+  }
+  std::string out = ": ";
+  if (!file_line.empty()) out += file_line + ", ";
+  if (!function.empty()) out += "in " + function + ", ";
+  return out + check;
+}
+
 TetMesh run_tetgen(const TetgenJob& job) {
   const SurfaceMesh& surface = job.surface;
   const int n = static_cast<int>(surface.vertices.cols());
@@ -169,10 +199,12 @@ IsolatedResult run_tetgen_isolated(const TetgenJob& job, double seconds) {
     result.mesh = run_tetgen(job);
     return result;
   }
+  int err[2] = {-1, -1};
+  if (pipe(err) != 0) err[0] = err[1] = -1;
   const pid_t pid = fork();
   if (pid < 0) {
-    close(fd[0]);
-    close(fd[1]);
+    for (const int f : {fd[0], fd[1], err[0], err[1]})
+      if (f >= 0) close(f);
     result.mesh = run_tetgen(job);
     return result;
   }
@@ -188,8 +220,15 @@ IsolatedResult run_tetgen_isolated(const TetgenJob& job, double seconds) {
   };
   if (pid == 0) {  // child: mesh, send, and leave without running the parent's exit handlers
     close(fd[0]);
-    // TetGen's assert message is the parent's to summarise, not to print.
-    if (const int null = open("/dev/null", O_WRONLY); null >= 0) dup2(null, STDERR_FILENO);
+    // TetGen's assert message is the parent's to summarise, not to print: it goes to the
+    // parent through its own pipe, and names the failed check in the parent's one line.
+    if (err[0] >= 0) close(err[0]);
+    if (err[1] >= 0) {
+      dup2(err[1], STDERR_FILENO);
+      close(err[1]);
+    } else if (const int null = open("/dev/null", O_WRONLY); null >= 0) {
+      dup2(null, STDERR_FILENO);
+    }
     int code = 1;
     std::string why;
     TetMesh tm;
@@ -215,27 +254,41 @@ IsolatedResult run_tetgen_isolated(const TetgenJob& job, double seconds) {
     _exit(sent ? 0 : 1);
   }
   close(fd[1]);
-  std::string bytes;
+  if (err[1] >= 0) close(err[1]);
+  // Both pipes are read until the child closes them (it exits), so that neither can fill and
+  // stall it; of its stderr the first 4 KiB are kept.
+  std::string bytes, errors;
   char buf[1 << 16];
   const auto deadline =
       std::chrono::steady_clock::now() + std::chrono::duration<double>(std::max(seconds, 0.0));
-  for (;;) {
+  pollfd p[2] = {{.fd = fd[0], .events = POLLIN, .revents = 0},
+                 {.fd = err[0], .events = POLLIN, .revents = 0}};
+  while (p[0].fd >= 0 || p[1].fd >= 0) {
     const double left =
         std::chrono::duration<double>(deadline - std::chrono::steady_clock::now()).count();
-    pollfd p{.fd = fd[0], .events = POLLIN, .revents = 0};
     const int ready =
-        left > 0 ? poll(&p, 1, static_cast<int>(std::min(left, 3600.0) * 1000) + 1) : 0;
+        left > 0 ? poll(p, 2, static_cast<int>(std::min(left, 3600.0) * 1000) + 1) : 0;
     if (ready == 0) {
       result.timed_out = true;
       kill(pid, SIGKILL);
       break;
     }
     if (ready < 0) break;
-    const ssize_t r = read(fd[0], buf, sizeof buf);
-    if (r <= 0) break;
-    bytes.append(buf, static_cast<std::size_t>(r));
+    for (int k = 0; k < 2; ++k) {
+      if (p[k].fd < 0 || p[k].revents == 0) continue;
+      const ssize_t r = read(p[k].fd, buf, sizeof buf);
+      if (r <= 0) {
+        close(p[k].fd);
+        p[k].fd = -1;  // poll skips a negative descriptor
+      } else if (k == 0) {
+        bytes.append(buf, static_cast<std::size_t>(r));
+      } else if (errors.size() < 4096) {
+        errors.append(buf, std::min(static_cast<std::size_t>(r), 4096 - errors.size()));
+      }
+    }
   }
-  close(fd[0]);
+  for (const pollfd& q : p)
+    if (q.fd >= 0) close(q.fd);
   int status = 0;
   waitpid(pid, &status, 0);
   if (result.timed_out) {
@@ -247,7 +300,7 @@ IsolatedResult run_tetgen_isolated(const TetgenJob& job, double seconds) {
   if (!WIFEXITED(status) || WEXITSTATUS(status) != 0 || bytes.size() < sizeof head) {
     result.failure = WIFSIGNALED(status)
                          ? "TetGen stopped on signal " + std::to_string(WTERMSIG(status)) +
-                               " (an internal assertion)"
+                               " (an internal assertion" + tetgen_assertion(errors) + ")"
                          : "TetGen's child process failed";
     return result;
   }

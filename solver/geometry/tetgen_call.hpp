@@ -50,4 +50,9 @@ struct IsolatedResult {
 };
 IsolatedResult run_tetgen_isolated(const TetgenJob& job, double seconds);
 
+// The failed check of an assert() message on TetGen's stderr, for the one line of a failure:
+// "tetgen: /path/tetgen.cxx:11026: int tetgenmesh::locate(...): Assertion `x' failed." gives
+// ": tetgen.cxx:11026, in tetgenmesh::locate, `x'"; "" when the text holds none.
+std::string tetgen_assertion(const std::string& stderr_text);
+
 }  // namespace asperity::geometry

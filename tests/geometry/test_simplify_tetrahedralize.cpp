@@ -13,6 +13,7 @@
 #include "geometry/repair_mesh.hpp"
 #include "geometry/simplify_edge_collapse.hpp"
 #include "geometry/tet_quality.hpp"
+#include "geometry/tetgen_call.hpp"
 #include "geometry/tetrahedralize.hpp"
 #include "mesh_fixtures.hpp"
 
@@ -199,6 +200,18 @@ TEST(Pipeline, FromMemoryReportsTheContractKeys) {
   // fraction of the radius (here the order of the removed detail, well under 1 %).
   EXPECT_LT(j["centroid_shift_rel"].get<double>(), 1e-2);
   EXPECT_TRUE(j["repairs"].empty());
+}
+
+// A TetGen abort's one line names the failed check (tetgen_call.hpp): glibc's assert() message,
+// as the study's rock_02 at 500 faces refined to h = 0.04 R printed it, reduced to the file and
+// line, the function and the condition; stderr without an assertion adds nothing.
+TEST(TetgenAssertion, NamesTheFailedCheck) {
+  EXPECT_EQ(
+      tetgen_assertion("asperity: /usr/include/tetgen.cxx:11026: int tetgenmesh::locate(point, "
+                       "tetgenmesh::triface*, int): Assertion `searchtet->ver != 4' failed.\n"),
+      ": tetgen.cxx:11026, in tetgenmesh::locate, `searchtet->ver != 4'");
+  EXPECT_EQ(tetgen_assertion(""), "");
+  EXPECT_EQ(tetgen_assertion("some other complaint\n"), "");
 }
 
 }  // namespace
