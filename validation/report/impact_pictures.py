@@ -38,6 +38,8 @@ matplotlib.use("Agg")
 import matplotlib.pyplot as plt  # noqa: E402
 import numpy as np  # noqa: E402
 from matplotlib.collections import PolyCollection  # noqa: E402
+
+import study_report  # noqa: E402  (beside this file: the particles the report charts)
 from matplotlib.tri import Triangulation  # noqa: E402
 from mpl_toolkits.mplot3d.art3d import Poly3DCollection  # noqa: E402
 import vtk  # noqa: E402
@@ -293,8 +295,15 @@ def study_plan(study, resolution, placement):
     cases = os.path.join(study, "cases")
     if not os.path.isdir(cases):
         raise BadInput(f"{study}: no cases/ folder (not an asperity study folder)")
+    # The particles the report charts (study_report.chart_particles: all of a small study, a selection
+    # of a large one), when the study has written its table.
+    chosen = None
+    if os.path.exists(os.path.join(study, "cases.csv")):
+        chosen = set(study_report.chart_particles(study_report.read_csv(os.path.join(study, "cases.csv")))[0])
     plan = []
     for particle in sorted(os.listdir(cases)):
+        if chosen is not None and particle not in chosen:
+            continue
         # Without --placement, the first placement the study ran for this particle.
         placements = [placement] if placement else ["centroid", "lowest"]
         placement_here = next((p for p in placements if all(

@@ -167,6 +167,18 @@ read_csv = geometry_table.read_csv
 num = geometry_table.num
 
 
+def quantile(v, p):
+    """The p-th quantile (0..1), linear between order statistics (Hyndman & Fan type 7): the tables' own
+    (validation/study/curve_measures.cpp), so the report's medians and p90s are the tables'."""
+    v = sorted(v)
+    if not v:
+        return math.nan
+    h = p * (len(v) - 1)
+    lo = math.floor(h)
+    hi = min(lo + 1, len(v) - 1)
+    return v[lo] + (h - lo) * (v[hi] - v[lo])
+
+
 def fmt(x, digits=4):
     v = num(x)
     if math.isnan(v):
@@ -262,8 +274,46 @@ def reference_case(cases, particle, placement):
     return max(fem, key=lambda c: num(c["resolution"])) if fem else None
 
 
+# Per-particle charts (force curves, impact pictures) of a study of more particles than this show
+# a selection (chart_particles): one chart per particle of a 50-particle study would be 50 charts
+# nobody compares, and about 7 MB in reports/.
+CHART_PARTICLES = 8
+
+
+def chart_particles(cases, k=CHART_PARTICLES):
+    """The particles whose force curves and impact pictures the report shows, in the study's order,
+    and the rule that chose them. All of them when there are k or fewer; else k at evenly spaced ranks
+    (smallest, median and largest included) of |discretization error| of the coarse fem at the
+    reference's resolution (the finest with a converged answer), the spread a reader wants to see:
+    the coarse mesh's best, typical and worst particle."""
+    particles = list(dict.fromkeys(c["particle"] for c in cases))
+    if len(particles) <= k:
+        return particles, ""
+    key = {}
+    for p in particles:
+        refs = [c for c in cases if c["particle"] == p and c["model"] == "fem" and c["answer"] == "true"]
+        if not refs:
+            continue
+        ref = max(refs, key=lambda c: (num(c["resolution"]), c["placement"]))
+        coarse = [c for c in cases if c["particle"] == p and c["model"] == "fem" and not c["element_size"]
+                  and c["resolution"] == ref["resolution"] and c["placement"] == ref["placement"]
+                  and c["discretization_error"] != ""]
+        if coarse:
+            key[p] = abs(num(coarse[0]["discretization_error"]))
+    ranked = sorted(key, key=lambda p: (key[p], p))
+    if len(ranked) < 2:
+        return particles[:k], f"the first {k} of the {len(particles)} particles"
+    picked = {ranked[round(i * (len(ranked) - 1) / (k - 1))] for i in range(k)}
+    rule = (f"{len(picked)} of the {len(particles)} particles, at evenly spaced ranks (smallest, median and largest "
+            "included) of the coarse fem's |discretization error| in peak force at the reference's resolution; every "
+            "particle's curves are in the study folder's cases/PARTICLE/*/force.csv")
+    return [p for p in particles if p in picked], rule
+
+
 def force_overlays(study, out, cases, doc):
-    particles = sorted({c["particle"] for c in cases}, key=lambda p: [c["particle"] for c in cases].index(p))
+    particles, rule = chart_particles(cases)
+    if rule:
+        doc.p(f"Force-time curves of {rule}.")
     placements = sorted({c["placement"] for c in cases})
     models = [m for m in ("fem", "rigid", "rigid-penalty") if any(c["model"] == m for c in cases)]
     if not models:
@@ -691,10 +741,14 @@ def axes_section(doc, cases):
           "their mean, its error half their spread.")
 
     def median(v):
-        v = sorted(v)
-        return v[len(v) // 2] if len(v) % 2 else 0.5 * (v[len(v) // 2 - 1] + v[len(v) // 2]) if v else math.nan
+        return quantile(v, 0.5)
+
+    def spread(v):
+        """median (p90) of a list of fractions, as percentages"""
+        return f"{pct(quantile(v, 0.5))} ({pct(quantile(v, 0.9))})" if v else "-"
 
     rows = []
+    cost = []
     for pl in sorted({c["placement"] for c in fem}):
         for n in sorted({c["resolution"] for c in fem}, key=num):
             here = [c for c in fem if c["placement"] == pl and c["resolution"] == n]
@@ -711,15 +765,32 @@ def axes_section(doc, cases):
             orders = sorted({("observed " if a["order_observed"] == "true" else "assumed ") +
                              f"{num(a['extrapolation_order']):.3g}" for a in answers if a["extrapolation_order"]})
             rows.append([pl, n, len(answers), sum(a["converged"] == "true" for a in answers),
-                         pct(median([abs(num(c["discretization_error"])) for c in coarse])),
+                         spread([abs(num(c["discretization_error"])) for c in coarse]),
                          pct(median([abs(num(a["discretization_error"])) for a in answers])),
-                         pct(median([num(a["extrapolation_error"]) for a in answers if a["extrapolation_error"]])),
+                         spread([num(a["extrapolation_error"]) for a in answers if a["extrapolation_error"]]),
                          ", ".join(orders) or "-",
-                         pct(median(geometry)) if geometry else "-",
+                         spread(geometry) if n != finest_n else "-",
                          pct(median([num(a["convergence_change"]) for a in answers]))])
-    doc.table(["placement", "N", "sequences", "converged (< 1 %)", "discretization error (coarse vs limit)",
-               "finest level vs limit", "limit's estimated error", "order (peak)",
-               "geometry effect (limit vs reference)", "last refinement change"], rows)
+            # What a converged answer costs: the whole sequence (the coarse case and every refined level)
+            # at N, per particle.
+            per_particle = {}
+            for c in here:
+                if any(a["particle"] == c["particle"] for a in answers):
+                    per_particle[c["particle"]] = per_particle.get(c["particle"], 0.0) + num(c["cpu_seconds"])
+            worst = max(per_particle, key=per_particle.get)
+            cost.append([pl, n, len(per_particle), fmt(quantile(list(per_particle.values()), 0.5), 3),
+                         fmt(quantile(list(per_particle.values()), 0.9), 3),
+                         f"{fmt(per_particle[worst], 3)} ({worst})",
+                         fmt(median([num(c["cpu_seconds"]) for c in coarse]), 3)])
+    doc.table(["placement", "N", "sequences", "converged (< 1 %)",
+               "discretization error (coarse vs limit), median (p90)", "finest level vs limit",
+               "limit's estimated error, median (p90)", "order (peak)",
+               "geometry effect (limit vs reference), median (p90)", "last refinement change"], rows)
+    doc.p("What a converged answer costs: the CPU of the whole sequence at N (the coarse case and every refined "
+          "level, the cases' own CPU, meshing apart), per particle; beside it the coarse case alone. The published "
+          "study's fem: 4 s at 100 and 572 s at 1000 triangles per simulation (Zhang & Zsaki 2019).")
+    doc.table(["placement", "N", "particles", "sequence CPU median (s)", "p90 (s)", "worst (s)",
+               "coarse case CPU median (s)"], cost)
     per = [[a["particle"], a["placement"], a["resolution"], fmt(a["peak_force"]), fmt(a["extrapolated_peak_force"]),
             pct(a["extrapolation_error"]), ("observed " if a["order_observed"] == "true" else "assumed ")
             + fmt(a["extrapolation_order"], 3), pct(a["convergence_change"]), a["converged"]]
