@@ -243,6 +243,35 @@ check("guidelines cover the four metrics",
       {g["metric"] for g in tables.get("guidelines.csv", [])} >=
       {"peak_force", "impulse", "contact_duration", "first_contact_time"},
       {g["metric"] for g in tables.get("guidelines.csv", [])})
+# What a converged answer costs (report.md, 'Geometry and discretization'): the worst particle's sequence at 250
+# triangles (the coarse case and its refined level, lowest placement) is the sum of their cases' CPU.
+seq = {}
+for c in tables.get("cases.csv", []):
+    if c["model"] == "fem" and c["resolution"] == "250" and c["placement"] == "lowest" and c["status"] == "ok":
+        seq[c["particle"]] = seq.get(c["particle"], 0.0) + float(c["cpu_seconds"])
+worst = max(seq, key=seq.get) if seq else ""
+check("report.md: the converged answer's cost is the sequence's CPU",
+      re.search(r"\| lowest \| 250 \| 2 \| [^|]+\| [^|]+\| " + re.escape(f"{seq[worst]:.3g}") + r" \(" + worst + r"\) \|",
+                md) is not None if seq else False, seq)
+# The particles a large study charts (study_report.chart_particles): on 20 particles whose coarse fem is off by
+# 1..20 %, 5 charts take the smallest, the median ranks and the largest, in the study's order; 8 or fewer, all.
+sys.path.insert(0, os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "..", "validation", "report"))
+import study_report  # noqa: E402
+
+synthetic = []
+for k, e in enumerate([7, 3, 12, 1, 20, 15, 9, 2, 18, 5, 11, 14, 4, 6, 19, 8, 10, 16, 13, 17]):
+    p = f"p{k:02d}"
+    synthetic += [{"particle": p, "model": "fem", "resolution": "2000", "placement": "lowest", "element_size": "",
+                   "answer": "false", "discretization_error": str(e / 100)},
+                  {"particle": p, "model": "fem", "resolution": "2000", "placement": "lowest", "element_size": "1e-3",
+                   "answer": "true", "discretization_error": "0"}]
+picked, rule = study_report.chart_particles(synthetic, 5)
+errors = {f"p{k:02d}": e for k, e in enumerate([7, 3, 12, 1, 20, 15, 9, 2, 18, 5, 11, 14, 4, 6, 19, 8, 10, 16, 13, 17])}
+check("chart_particles: smallest, evenly spaced ranks and largest, in the study's order",
+      sorted(errors[p] for p in picked) == [1, 6, 11, 15, 20] and picked == sorted(picked) and "5 of the 20" in rule,
+      (picked, rule))
+check("chart_particles: a small study charts every particle",
+      study_report.chart_particles(synthetic[:16], 8) == ([f"p{k:02d}" for k in range(8)], ""))
 # The reference uncertainty (lowest placement, peak force, median over the 2 particles): the reference is the limit
 # at 250 triangles, uncertain by its extrapolation's error; the geometry term (against the limit one resolution down)
 # needs a refined sequence there too, and 100 is not refined here, so it is absent (docs/study.md, "Guidelines").
