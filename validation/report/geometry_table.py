@@ -285,8 +285,11 @@ def tables(seq_rows, answer_rows):
                     cells.append("-")
                     continue
                 if r["resolution"] == "inf":
+                    # An order (and so a limit) needs three resolutions; with two, none is sought.
+                    levels = sum(1 for k in mine if k != "inf")
                     cells.append(f"{g(r['value'])} ± {pct(r['limit_error'])}" if math.isfinite(r["value"])
-                                 else "none (changes not falling)")
+                                 else "none (changes not falling)" if levels >= 3 else
+                                 f"none ({levels} resolutions: an order needs three)")
                     continue
                 c = g(r["value"])
                 if math.isfinite(r["change"]):

@@ -718,7 +718,7 @@ def answer_section(doc, guidelines, published):
               "the finest resolution) for that share of the particles: " + "; ".join(missing) + ". The finest "
               "level's own distance from the limit is in 'Geometry and discretization' below: where it exceeds the "
               "tolerance the study's refinement sequence is too short to answer, and a finer element size (or the "
-              "full study's third level) is what would.")
+              "cluster study's third level, data/study/cluster.json) is what would.")
 
 
 def axes_section(doc, cases):
