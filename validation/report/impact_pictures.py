@@ -38,12 +38,12 @@ matplotlib.use("Agg")
 import matplotlib.pyplot as plt  # noqa: E402
 import numpy as np  # noqa: E402
 from matplotlib.collections import PolyCollection  # noqa: E402
-
-import study_report  # noqa: E402  (beside this file: the particles the report charts)
 from matplotlib.tri import Triangulation  # noqa: E402
 from mpl_toolkits.mplot3d.art3d import Poly3DCollection  # noqa: E402
 import vtk  # noqa: E402
 from vtk.util.numpy_support import vtk_to_numpy  # noqa: E402
+
+import study_report  # noqa: E402  (beside this file: the particles the report charts)
 
 # A frame every this many steps: only frame 0, the peak and the last are written.
 EVERY = 10**9

@@ -637,8 +637,8 @@ def penalty_section(out, pen_dir, doc):
     finest = max(int(r["resolution"]) for r in rows)
 
     def median(v):
-        v = sorted(v)
-        return math.nan if not v else (v[len(v) // 2] if len(v) % 2 else 0.5 * (v[len(v) // 2 - 1] + v[len(v) // 2]))
+        return quantile(v, 0.5)
+
     summary = []
     for al in alphas:
         fem = [r for r in rows if r["model"] == "fem" and num(r["alpha"]) == al]

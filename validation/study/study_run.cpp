@@ -639,7 +639,7 @@ cluster::TaskReport run_case(const StudyDef& def, const fs::path& out, const Par
     // what the case costs alone, whichever ran first.
     const double cpu = thread_cpu_seconds() - cpu0 + (run::kept_mesh_cpu_seconds() - kept0);
     thin_rows(result, def.rows);
-    // The case's CPU on this worker thread (the run's own cpu_seconds counts the time loop only).
+    // The run's own cpu_seconds counts the time loop only.
     result.summary["cpu_seconds_thread"] = cpu;
     // The element size at the strike point (m, null for the coarse default), as the scene set it.
     result.summary["element_size"] = c.level > 0 ? OJson(c.relative_size * pp.radius) : OJson();

@@ -22,6 +22,7 @@ import csv
 import json
 import math
 import os
+import statistics
 import sys
 
 
@@ -40,12 +41,6 @@ def read_off_vertices_faces(path):
 def mean_edge(v, faces):
     edges = {(min(a, b), max(a, b)) for f in faces for a, b in ((f[0], f[1]), (f[1], f[2]), (f[2], f[0]))}
     return sum(math.dist(v[a], v[b]) for a, b in edges) / len(edges)
-
-
-def median(x):
-    x = sorted(x)
-    n = len(x)
-    return x[n // 2] if n % 2 else 0.5 * (x[n // 2 - 1] + x[n // 2])
 
 
 def main():
@@ -99,9 +94,9 @@ def main():
     print("|---|---|---|---|---|")
     for n in sorted({r["resolution"] for r in rows}):
         here = [r for r in rows if r["resolution"] == n]
-        print(f"| {n} | {len(here)} | {median([r['contact_over_edge'] for r in here]):.3g} | "
+        print(f"| {n} | {len(here)} | {statistics.median([r['contact_over_edge'] for r in here]):.3g} | "
               f"{max(r['contact_over_edge'] for r in here):.3g} | "
-              f"{median([r['faces_for_three_edges'] for r in here]):.3g} |")
+              f"{statistics.median([r['faces_for_three_edges'] for r in here]):.3g} |")
 
 
 if __name__ == "__main__":
