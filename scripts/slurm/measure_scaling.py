@@ -4,6 +4,7 @@ speed-up").
 
 Usage (a cluster up, SLURM_CONF set: scripts/slurm/local-cluster.sh start):
   scripts/slurm/measure_scaling.py STUDY.json OUT_DIR CSV [--repeats N] [--layouts 1x1,2x1,1x2]
+  scripts/slurm/measure_scaling.py --table CSV     (the table again, from the CSV)
 
 Each repeat runs every layout RxT (R ranks per node, T threads each) once, in turn, as its own
 srun job (scripts/slurm/submit.sh --srun) into a fresh folder, so a change in the machine's load
@@ -54,13 +55,18 @@ def run_layout(study, out, ranks, threads):
 
 def main():
     ap = argparse.ArgumentParser(description=__doc__.split("\n")[0])
-    ap.add_argument("study")
-    ap.add_argument("out")
-    ap.add_argument("csv")
+    ap.add_argument("study", help="the study definition, or --table: the CSV of an earlier run")
+    ap.add_argument("out", nargs="?")
+    ap.add_argument("csv", nargs="?")
+    ap.add_argument("--table", action="store_true", help="only print the table of STUDY (a CSV)")
     ap.add_argument("--repeats", type=int, default=3)
     ap.add_argument("--layouts", default="1x1,2x1,1x2")
     a = ap.parse_args()
     layouts = [tuple(int(x) for x in s.split("x")) for s in a.layouts.split(",")]
+    if a.table:
+        with open(a.study, newline="") as f:
+            print_table(list(csv.DictReader(f)), [f"{r}x{t}" for r, t in layouts])
+        return
     keys = ["repeat", "layout", "ranks", "workers", "cases", "ran", "wall_s", "job_elapsed_s",
             "cpu_s", "idle_pct", "drain_s", "load_before", "load_after"]
     rows = []
@@ -77,21 +83,24 @@ def main():
                 f.flush()
                 print(f"repeat {rep} {ranks}x{threads}: {r['wall_s']:.1f} s wall, {r['cpu_s']:.1f} s CPU, "
                       f"{r['idle_pct']:.1f} % idle, load {before:.1f} -> {r['load_after']:.1f}", flush=True)
-    one = [r["wall_s"] for r in rows if r["layout"] == "1x1"]
-    if not one:
-        return
-    base = statistics.median(one)  # the ideal for W workers is base / W
-    print("| layout (ranks x threads) | wall (median) | case CPU (median) | speed-up | efficiency | "
+    print_table(rows, [f"{r}x{t}" for r, t in layouts])
+
+
+def print_table(rows, layouts):
+    """Medians per layout: speed-up and efficiency against the 1x1 median, and why: the speed-up
+    is (1x1 CPU / CPU) x (cores had / 1x1's cores had), cores had = CPU / wall."""
+    def med(layout, key):
+        return statistics.median(float(r[key]) for r in rows if r["layout"] == layout)
+    base, base_cores = med("1x1", "wall_s"), med("1x1", "cpu_s") / med("1x1", "wall_s")
+    print("| ranks x threads | wall | case CPU | cores had (CPU / wall) | speed-up | efficiency | "
           "pool idle | end with idle workers |")
-    print("| --- | --- | --- | --- | --- | --- | --- |")
-    for ranks, threads in layouts:
-        mine = [r for r in rows if r["layout"] == f"{ranks}x{threads}"]
-        wall = statistics.median(r["wall_s"] for r in mine)
-        workers = mine[0]["workers"]
-        print(f"| {ranks}x{threads} | {wall:.1f} s | {statistics.median(r['cpu_s'] for r in mine):.1f} s | "
-              f"{base / wall:.2f} | {base / wall / workers:.2f} | "
-              f"{statistics.median(r['idle_pct'] for r in mine):.1f} % | "
-              f"{statistics.median(r['drain_s'] for r in mine):.1f} s |")
+    print("| --- | --- | --- | --- | --- | --- | --- | --- |")
+    for layout in layouts:
+        wall, cpu = med(layout, "wall_s"), med(layout, "cpu_s")
+        workers = int(next(r["workers"] for r in rows if r["layout"] == layout))
+        print(f"| {layout} | {wall:.1f} s | {cpu:.1f} s | {cpu / wall:.2f} (x{cpu / wall / base_cores:.2f}) | "
+              f"{base / wall:.2f} | {base / wall / workers:.2f} | {med(layout, 'idle_pct'):.1f} % | "
+              f"{med(layout, 'drain_s'):.1f} s |")
 
 
 if __name__ == "__main__":

@@ -57,6 +57,10 @@ if missing:
     skip(f"{', '.join(missing)} not installed (deps/debian-packages.txt: slurmctld, slurmd, "
          "slurm-client, munge)")
 
+# A cluster left running in this folder by an earlier run that was killed: its pid files go
+# with the folder, so it is stopped first.
+subprocess.run([os.path.join(scripts, "local-cluster.sh"), "stop", cluster_dir], capture_output=True,
+               timeout=120)
 shutil.rmtree(work, ignore_errors=True)
 os.makedirs(work)
 os.environ["SLURM_CONF"] = os.path.join(cluster_dir, "slurm.conf")
