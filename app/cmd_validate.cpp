@@ -5,9 +5,9 @@
 
 #include "app/commands.hpp"
 #include "app/out_folder.hpp"
-#include "core/error.hpp"
 #include "peers/peer.hpp"
-#include "validate.hpp"
+#include "solver/core/error.hpp"
+#include "validation/validate.hpp"
 
 namespace asperity::app {
 namespace fs = std::filesystem;

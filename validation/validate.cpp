@@ -1,5 +1,5 @@
 // `asperity validate`'s work (validate.hpp).
-#include "validate.hpp"
+#include "validation/validate.hpp"
 
 #include <algorithm>
 #include <chrono>
@@ -13,13 +13,13 @@
 
 #include "cluster/task_pool.hpp"
 #include "cluster/world.hpp"
-#include "core/error.hpp"
-#include "io/atomic_file.hpp"
-#include "junit.hpp"
 #include "peers/peer.hpp"
-#include "run/run_scene.hpp"
-#include "run/stability_sweep.hpp"
-#include "validate_report.hpp"
+#include "solver/core/error.hpp"
+#include "solver/io/atomic_file.hpp"
+#include "solver/run/run_scene.hpp"
+#include "solver/run/stability_sweep.hpp"
+#include "validation/junit.hpp"
+#include "validation/validate_report.hpp"
 
 namespace asperity::validation {
 namespace {

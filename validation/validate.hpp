@@ -8,8 +8,8 @@
 #include <optional>
 #include <vector>
 
-#include "case.hpp"
 #include "peers/external_solver.hpp"
+#include "validation/case.hpp"
 
 namespace asperity::validation {
 
