@@ -2,6 +2,7 @@
 // (docs/crosscheck.md, "Gating any solver").
 #include "peers/external_solver.hpp"
 
+#include <cstdio>
 #include <fstream>
 
 #include "peers/peer.hpp"
@@ -110,6 +111,19 @@ run::RunResult solve_case(const CaseSolver& solver, const validation::CaseDef& c
   const Resolved resolved{.dt = own.summary.at("dt").get<double>(),
                           .steps = own.summary.at("steps").get<long>()};
   return run_peer(a, peer_executable(a, solver.program), c.scene, resolved, dir);
+}
+
+validation::OtherSolver other_solver(const CaseSolver& solver) {
+  return {.name = solver.external() ? "the command `" + solver.command + "`"
+                                    : "the peer " + solver.peer,
+          .solve = [solver](const validation::CaseDef& c, const fs::path& dir) {
+            try {
+              return validation::check_case(c, solve_case(solver, c, dir));
+            } catch (const PeerFailure& e) {
+              std::fprintf(stderr, "asperity: %s\n", e.what());
+              return validation::failed_case(c, e.what());
+            }
+          }};
 }
 
 }  // namespace asperity::peers

@@ -9,6 +9,7 @@
 
 #include "solver/run/run_scene.hpp"
 #include "validation/case.hpp"
+#include "validation/validate.hpp"
 
 namespace asperity::peers {
 
@@ -30,5 +31,10 @@ void check_solver(const CaseSolver& solver, const std::vector<validation::CaseDe
 // solver exits non-zero or writes no readable summary.json.
 run::RunResult solve_case(const CaseSolver& solver, const validation::CaseDef& c,
                           const std::filesystem::path& dir);
+
+// The solver as `validate` takes it: each case solved (solve_case) and checked; a PeerFailure
+// fails the case, with its one-line reason on stderr. Its name: "the peer NAME" or "the command
+// `LINE`".
+validation::OtherSolver other_solver(const CaseSolver& solver);
 
 }  // namespace asperity::peers
