@@ -3,8 +3,8 @@
 speed-up").
 
 Usage (a cluster up, SLURM_CONF set: scripts/slurm/local-cluster.sh start):
-  scripts/slurm/measure_scaling.py STUDY.json OUT_DIR CSV [--repeats N] [--layouts 1x1,2x1,1x2]
-  scripts/slurm/measure_scaling.py --table CSV     (the table again, from the CSV)
+  tools/measure_scaling.py STUDY.json OUT_DIR CSV [--repeats N] [--layouts 1x1,2x1,1x2]
+  tools/measure_scaling.py --table CSV     (the table again, from the CSV)
 
 Each repeat runs every layout RxT (R ranks per node, T threads each) once, in turn, as its own
 srun job (scripts/slurm/submit.sh --srun) into a fresh folder, so a change in the machine's load
@@ -23,7 +23,7 @@ import statistics
 import subprocess
 import time
 
-here = os.path.dirname(os.path.abspath(__file__))
+submit = os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "scripts", "slurm", "submit.sh")
 LINE = re.compile(r"(\d+) cases \((\d+) run.*?in ([\d.]+) s wall, ([\d.]+) s CPU; (\d+) ranks, "
                   r"(\d+) workers, ([\d.]+) % idle, ([\d.]+) s at the end")
 
@@ -35,7 +35,7 @@ def load1():
 
 def run_layout(study, out, ranks, threads):
     shutil.rmtree(out, ignore_errors=True)
-    job = subprocess.run([os.path.join(here, "submit.sh"), "--srun", study, out,
+    job = subprocess.run([submit, "--srun", study, out,
                           f"--ntasks-per-node={ranks}", f"--cpus-per-task={threads}"],
                          capture_output=True, text=True, check=True).stdout.split()[0]
     while subprocess.run(["squeue", "--noheader", f"--jobs={job}"], capture_output=True,
