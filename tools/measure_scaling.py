@@ -1,6 +1,6 @@
 #!/usr/bin/python3
-"""Wall time of one study at several ranks x threads through Slurm (docs/cluster.md, "Measured
-speed-up").
+"""Wall time of one study at several ranks x threads through Slurm (docs/cluster.md, "Speed-up
+through Slurm").
 
 Usage (a cluster up, SLURM_CONF set: scripts/slurm/local-cluster.sh start):
   tools/measure_scaling.py STUDY.json OUT_DIR CSV [--repeats N] [--layouts 1x1,2x1,1x2]
