@@ -44,9 +44,10 @@ void add_validate_command(CLI::App& app, Action& action) {
   validate->add_flag("-q,--quiet", o.quiet, "Only errors on stderr");
   validate->callback([args, &action] {
     action = [args] {
-      // A bad case file, then a bad --out, is exit 2 before anything runs.
+      // A bad case file, then a bad --out or --junit, is exit 2 before anything runs.
       const std::vector<validation::CaseDef> cases = validation::load_cases(args->cases);
       check_out_folder(args->options.out);
+      if (args->options.junit) check_out_file(*args->options.junit, "--junit");
       return validation::validate_cases(cases, args->options) == 0 ? kExitOk : kExitFailure;
     };
   });

@@ -9,6 +9,7 @@
 #include "contact/hertz_impact.hpp"
 #include "core/error.hpp"
 #include "io/json_file.hpp"
+#include "io/plain_name.hpp"
 #include "run/summary_keys.hpp"
 #include "scene/scene_json.hpp"
 
@@ -71,19 +72,6 @@ const std::vector<std::string_view>& checkable_keys() {
 
 }  // namespace
 
-std::string case_name_problem(const std::string& name) {
-  if (name.empty()) return "must not be empty";
-  if (name.size() > 200) return "longer than 200 characters";
-  if (name == "." || name == "..") return "must not be \"" + name + "\" (it names a folder)";
-  for (const char c : name) {
-    if (c == '/' || c == '\\')
-      return "must not contain a path separator (it names the case's output folder)";
-    if (static_cast<unsigned char>(c) < 0x20 || c == 0x7f)
-      return "must not contain control characters";
-  }
-  return "";
-}
-
 CaseDef load_case(const std::filesystem::path& file) {
   const io::Json json = io::read_json_file(file);
   const JsonReader r(json, file, "");
@@ -97,7 +85,7 @@ CaseDef load_case(const std::filesystem::path& file) {
   c.file = file;
   c.name = r.string("case");
   // The name becomes a folder under --out: a path would write outside it.
-  if (const std::string problem = case_name_problem(c.name); !problem.empty())
+  if (const std::string problem = io::plain_name_problem(c.name); !problem.empty())
     r.fail("case", problem);
   c.description = r.has("description") ? r.string("description") : "";
   if (r.has("tags")) {
@@ -183,8 +171,9 @@ CaseDef load_case(const std::filesystem::path& file) {
     }
     if (ch.reference != "max" && ch.reference != "min" && ch.reference != "range") {
       if (!e.has("rel_tol") && !e.has("abs_tol")) e.fail("", "needs rel_tol or abs_tol");
-      ch.rel_tol = e.number_or("rel_tol", 0);
-      ch.abs_tol = e.number_or("abs_tol", 0);
+      // A negative tolerance fails every value: bad input, not a failed check after the run.
+      if (e.has("rel_tol")) ch.rel_tol = e.in_range("rel_tol", 0, 1e6, false, false);
+      if (e.has("abs_tol")) ch.abs_tol = e.in_range("abs_tol", 0, 1e300, false, false);
     }
     c.checks.push_back(ch);
   }

@@ -214,7 +214,7 @@ std::vector<CaseDef> load_cases(const std::vector<fs::path>& paths) {
 
 int validate_cases(const std::vector<CaseDef>& cases, const ValidateOptions& o) {
   if (o.solver.any()) peers::check_solver(o.solver, cases);
-  if (o.junit) fs::remove(*o.junit);
+  if (o.junit) io::remove_earlier_output(*o.junit);
   const std::string solved_by = o.solver.external() ? "the command `" + o.solver.command + "`"
                                 : o.solver.any()    ? "the peer " + o.solver.peer
                                                     : "asperity";

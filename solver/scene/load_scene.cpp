@@ -25,7 +25,8 @@ Material parse_material(const JsonReader& m, const std::string& name) {
   // Thermodynamic bounds of an isotropic solid: −1 < ν < 1/2.
   out.poisson = m.in_range("poisson", -1.0, 0.5, true, true);
   out.friction = m.has("friction") ? m.in_range("friction", 0.0, 1e3, false, false) : 0.0;
-  out.restitution = m.has("restitution") ? m.in_range("restitution", 0.0, 1.0, true, false) : 1.0;
+  out.restitution =
+      m.has("restitution") ? m.in_range("restitution", kMinRestitution, 1.0, false, false) : 1.0;
   if (m.has("law")) {
     const std::string law = m.string("law");
     if (const std::optional<ElasticLaw> known = elastic_law_from_name(law)) {
@@ -52,8 +53,12 @@ Shape parse_shape(const JsonReader& s) {
   if (type == "plane") {
     s.only_keys_in(keys::kPlane);
     PlaneShape p{.point = s.vec3("point"), .normal = s.vec3("normal")};
-    if (p.normal.norm() < 1e-12) s.fail("normal", "must be a non-zero vector");
-    p.normal.normalize();
+    // Scaled by its largest component first: the norm of [1e308, 1e308, 0] overflows, and the
+    // normal became zero (a plane that overlapped everything).
+    const double largest = p.normal.cwiseAbs().maxCoeff();
+    if (!(largest > 0) || (p.normal / largest).norm() * largest < 1e-12)
+      s.fail("normal", "must be a non-zero vector (got " + io::echo(s.value().at("normal")) + ")");
+    p.normal = (p.normal / largest).normalized();
     return p;
   }
   if (type == "box") {
@@ -66,6 +71,8 @@ Shape parse_shape(const JsonReader& s) {
     s.only_keys_in(keys::kMesh);
     MeshShape m;
     m.file = s.string("file");
+    // "" joined to the scene's folder names the folder, and the message named it instead.
+    if (m.file.empty()) s.fail("file", "must name a mesh file (got \"\")");
     if (m.file.is_relative()) m.file = s.file().parent_path() / m.file;
     m.faces = s.has("faces") ? static_cast<int>(s.integer("faces", 4, 10'000'000)) : 0;
     m.scale = s.has("scale") ? s.positive("scale") : 1.0;
@@ -170,7 +177,8 @@ ContactDef parse_contact(const JsonReader& c) {
     }
   }
   if (c.has("friction")) out.friction = c.in_range("friction", 0.0, 1e3, false, false);
-  if (c.has("restitution")) out.restitution = c.in_range("restitution", 0.0, 1.0, true, false);
+  if (c.has("restitution"))
+    out.restitution = c.in_range("restitution", kMinRestitution, 1.0, false, false);
   return out;
 }
 
@@ -209,6 +217,11 @@ SceneDef parse_scene(const io::Json& json, const std::filesystem::path& file,
   const JsonReader mats = r.child("materials");
   mats.require_object();
   if (mats.value().empty()) mats.fail("", "must define at least one material");
+  if (mats.value().size() > kMaxMaterials) {
+    mats.fail("", std::to_string(mats.value().size()) + " materials, more than the " +
+                      std::to_string(kMaxMaterials) +
+                      " a scene may define (every pair of them is set up before the run)");
+  }
   std::map<std::string, int> material_index;
   std::vector<std::string> law_given;  // materials that name an elastic law (checked below)
   for (const auto& [name, m] : mats.value().items()) {

@@ -6,6 +6,7 @@
 
 #include "core/error.hpp"
 #include "io/json_file.hpp"
+#include "io/plain_name.hpp"
 
 namespace asperity::study {
 namespace fs = std::filesystem;
@@ -124,6 +125,7 @@ StudyDef load_study(const fs::path& file) {
       const JsonReader m = list.at(i);
       m.only_keys({"name", "file", "scale"});
       ParticleSource src;
+      if (m.string("file").empty()) m.fail("file", "must name a mesh file (got \"\")");
       src.file = base / m.string("file");
       src.name = m.has("name") ? m.string("name") : src.file.stem().string();
       if (m.has("scale")) src.scale = m.positive("scale");
@@ -134,9 +136,11 @@ StudyDef load_study(const fs::path& file) {
   if (s.particles.empty()) p.fail("", "names no particle (give \"set\" or \"meshes\")");
   for (std::size_t i = 0; i < s.particles.size(); ++i) {
     const std::string& n = s.particles[i].name;
-    if (n.empty() || n.find_first_of("/\\ \t") != std::string::npos || n == "." || n == "..") {
-      p.fail("", "particle name \"" + n + "\" must be a plain file name");
-    }
+    // The name is a file and folder under --out (particles/NAME.off, meshes/NAME-N/).
+    if (const std::string problem = io::plain_name_problem(n); !problem.empty())
+      p.fail("", "particle name " + io::echo(n) + ": " + problem);
+    if (n.find(' ') != std::string::npos)
+      p.fail("", "particle name " + io::echo(n) + ": must not contain spaces (a table cell)");
     for (std::size_t j = 0; j < i; ++j) {
       if (s.particles[j].name == n) p.fail("", "particle name \"" + n + "\" appears twice");
     }
