@@ -127,7 +127,7 @@ void add_particle_command(CLI::App& app, Action& action) {
       }
       check_out_file(args->out);
       if (const std::string problem = geometry::particle_def_problem(args->def); !problem.empty()) {
-        throw InputError("particle: " + problem);
+        throw InputError("particle: --" + problem);  // the problem starts with the key
       }
       make_particle(args->def, args->out, args->quiet);
       return kExitOk;

@@ -8,7 +8,6 @@
 #include <charconv>
 #include <cmath>
 #include <cstdint>
-#include <cstdlib>
 #include <cstring>
 #include <fstream>
 #include <iostream>
@@ -121,8 +120,9 @@ std::string obj_index_problem(const fs::path& file, std::size_t vertices) {
       long long v = 0;
       const char* b = index.data();
       const auto [end, ec] = std::from_chars(b + (index[0] == '+' ? 1 : 0), b + index.size(), v);
-      const bool in_range = ec == std::errc{} && end == b + index.size() && v != 0 &&
-                            std::llabs(v) <= static_cast<long long>(vertices);
+      const auto n = static_cast<long long>(vertices);
+      const bool in_range =
+          ec == std::errc{} && end == b + index.size() && v != 0 && v >= -n && v <= n;
       if (!in_range) {
         return "line " + std::to_string(number) + ": face vertex index \"" + index.substr(0, 40) +
                "\" is out of range (the file has " + std::to_string(vertices) + " vertices)";

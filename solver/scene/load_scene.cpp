@@ -1,7 +1,9 @@
 // Scene loading: every key validated once, here, at the edge (docs/contract.md, "Scene file").
+#include <algorithm>
 #include <cmath>
 #include <map>
 #include <set>
+#include <sstream>
 
 #include "core/error.hpp"
 #include "io/json_file.hpp"
@@ -148,8 +150,8 @@ ContactDef parse_contact(const JsonReader& c) {
       c.fail("penalty_alpha", "only the potential law takes penalty_alpha");
     }
     if (out.penalty) c.fail("penalty_alpha", "give penalty (Pa) or penalty_alpha, not both");
-    // α = p/E (docs/physics.md, "Penalty"); the study definition's range.
-    out.penalty_alpha = c.in_range("penalty_alpha", 0, 1e6, true, false);
+    // α = p/E (docs/physics.md, "Penalty"); the study definition's range, from kMinPenaltyAlpha.
+    out.penalty_alpha = c.in_range("penalty_alpha", kMinPenaltyAlpha, 1e6, false, false);
   }
   if (c.has("max_contact_factor")) {
     if (out.law != ContactLaw::potential) {
@@ -310,6 +312,24 @@ SceneDef parse_scene(const io::Json& json, const std::filesystem::path& file,
                        "] is a sphere; use hertz, hertz-mindlin or linear, or mesh the sphere "
                        "(shape \"mesh\")");
       }
+    }
+  }
+
+  // A penalty in Pa is held to the α range as well: p/E of the largest Young's modulus of the
+  // moving bodies (of all, when none moves), as fdem::contact_penalty takes it.
+  if (s.contact.penalty) {
+    double young = 0;
+    for (const BodyDef& b : s.bodies)
+      if (!b.fixed) young = std::max(young, s.materials[b.material].young);
+    if (young == 0)
+      for (const BodyDef& b : s.bodies) young = std::max(young, s.materials[b.material].young);
+    const double alpha = *s.contact.penalty / young;
+    if (!(alpha >= kMinPenaltyAlpha && alpha <= 1e6)) {
+      std::ostringstream m;
+      m << *s.contact.penalty << " Pa is " << alpha
+        << " times the largest moving body's Young's modulus (" << young << " Pa); it must be "
+        << kMinPenaltyAlpha << " to 1e+06 times it";
+      r.child("contact").fail("penalty", m.str());
     }
   }
 

@@ -403,11 +403,24 @@ printf '{"particles": {"meshes": [{"file": "%s"}]}, "resolutions": [100, 400], "
 bad "study resolution above the particle's triangles" \
   "above.json: resolutions\[1\]: 400 triangles is more than particle \"particle-seed3-320\" has \(320\)" \
   study "$in/above.json" --out "$out/s"
-printf '{"particles": {"meshes": [{"file": "%s"}]}, "resolutions": [100, 320], "models": ["fem"], "refinement": {"sizes": [0.001]}}' \
+printf '{"particles": {"meshes": [{"file": "%s"}]}, "resolutions": [100, 320], "models": ["fem"], "refinement": {"sizes": [0.001], "growth": 0}}' \
   "$mesh320" > "$in/finest.json"
 bad "study refinement beyond the tetrahedron limit" \
   "finest.json: refinement\.sizes\[0\]: particle \"particle-seed3-320\": .* tetrahedra \(limit 20 M\)" \
   study "$in/finest.json" --out "$out/s"
+# Long set-up says so at once: a study each phase's count, mesh the estimate before TetGen starts.
+printf '{"particles": {"meshes": [{"file": "%s"}]}, "resolutions": [100, 320], "models": ["fem"], "refinement": {"sizes": [0.001]}}' \
+  "$mesh320" > "$in/slow.json"
+"$bin" study "$in/slow.json" --out "$work/slow-study" -j 1 2> "$work/slow-study.err" &
+pid=$!
+"$bin" mesh "$mesh320" --element-size 0.002 --out "$work/slow-mesh" 2> "$work/slow-mesh.err" &
+pid2=$!
+sleep 4
+kill -s INT "$pid" "$pid2"
+wait "$pid" "$pid2"
+check "a study says its meshes at once ($(head -c 200 "$work/slow-study.err"))" grep -q '^meshes: 2 to do' "$work/slow-study.err"
+check "mesh says its estimate before TetGen ($(head -c 200 "$work/slow-mesh.err"))" \
+  grep -qE 'particle-seed3-320\.off: tetrahedralizing, about [0-9.e+]+ M tetrahedra estimated \(TetGen stops at 300 s\)' "$work/slow-mesh.err"
 
 # --- 4 / 5. Scene bounds: materials (every pair is set up before the run) and restitution (its
 # damping solve never separated below 1e-10)
@@ -418,6 +431,17 @@ bad "restitution 1e-10" "tiny_e.json: materials\.[a-z]+\.restitution: must lie i
   run "$in/tiny_e.json" --out "$out/r"
 bad "restitution 1e-10, stability" "tiny_e.json: materials\.[a-z]+\.restitution: must lie in \[0\.001, 1\]" \
   stability "$in/tiny_e.json" --out "$out/r"
+
+# --- 12. A penalty so soft that bodies pass through each other unseen ran to status ok: bounded
+# as α = p/E from 1e-6 (the soft-penalty tunnel scene, α = 2e-5, stays a runaway: exit 3)
+for p in 1e-300 1e4; do
+  poly_variant "pen$p" "s['contact'] = {'law': 'potential', 'penalty': $p}"
+  bad "contact.penalty $p" "pen$p.json: contact\.penalty: .* Pa is .* times the largest moving body's Young's modulus .*must be 1e-06 to 1e\+06 times it" \
+    run "$in/pen$p.json" --out "$out/r"
+done
+poly_variant alpha0 "s['contact'] = {'law': 'potential', 'penalty_alpha': 1e-300}"
+bad "contact.penalty_alpha 1e-300" "alpha0.json: contact\.penalty_alpha: must lie in \[1e-06, 1e\+06\]" \
+  run "$in/alpha0.json" --out "$out/r"
 
 # --- 6. A 60 MB unknown key is refused within the limit (the suggestion was 49 s)
 /usr/bin/python3 -c "

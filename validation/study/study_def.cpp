@@ -7,6 +7,7 @@
 #include "core/error.hpp"
 #include "io/json_file.hpp"
 #include "io/plain_name.hpp"
+#include "scene/scene.hpp"
 
 namespace asperity::study {
 namespace fs = std::filesystem;
@@ -296,7 +297,9 @@ StudyDef load_study(const fs::path& file) {
                                  ? std::optional<double>()
                                  : r.in_range("end_after_separation", 0, 100, true, false);
   }
-  if (r.has("penalty_alpha")) s.penalty_alpha = r.in_range("penalty_alpha", 0, 1e6, true, false);
+  // The scene's range (a case's scene is refused below it).
+  if (r.has("penalty_alpha"))
+    s.penalty_alpha = r.in_range("penalty_alpha", scene::kMinPenaltyAlpha, 1e6, false, false);
   if (r.has("gravity")) s.gravity = r.in_range("gravity", 0, 1000, false, false);
   const Material rock{
       .name = "particle", .density = 2650, .young = 5e10, .poisson = 0.25, .friction = 0};
