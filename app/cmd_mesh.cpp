@@ -9,9 +9,9 @@
 #include "app/cli_numbers.hpp"
 #include "app/commands.hpp"
 #include "app/out_folder.hpp"
-#include "core/error.hpp"
-#include "core/format.hpp"
-#include "geometry/mesh_pipeline.hpp"
+#include "solver/core/error.hpp"
+#include "solver/core/format.hpp"
+#include "solver/geometry/mesh_pipeline.hpp"
 
 namespace asperity::app {
 namespace {

@@ -5,12 +5,12 @@
 
 #include "app/commands.hpp"
 #include "app/out_folder.hpp"
-#include "core/error.hpp"
-#include "io/atomic_file.hpp"
-#include "io/json_file.hpp"
-#include "io/printable.hpp"
-#include "run/run_scene.hpp"
-#include "scene/scene.hpp"
+#include "solver/core/error.hpp"
+#include "solver/io/atomic_file.hpp"
+#include "solver/io/json_file.hpp"
+#include "solver/io/printable.hpp"
+#include "solver/run/run_scene.hpp"
+#include "solver/scene/scene.hpp"
 
 namespace asperity::app {
 namespace {

@@ -7,9 +7,9 @@
 
 #include "app/commands.hpp"
 #include "cluster/world.hpp"
-#include "core/error.hpp"
-#include "core/interrupt.hpp"
-#include "io/printable.hpp"
+#include "solver/core/error.hpp"
+#include "solver/core/interrupt.hpp"
+#include "solver/io/printable.hpp"
 
 namespace {
 

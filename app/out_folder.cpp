@@ -8,8 +8,8 @@
 
 #include <string>
 
-#include "core/error.hpp"
-#include "io/atomic_file.hpp"
+#include "solver/core/error.hpp"
+#include "solver/io/atomic_file.hpp"
 
 namespace asperity::app {
 namespace {

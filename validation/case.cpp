@@ -1,12 +1,12 @@
 // Validation cases: running and checking them.
-#include "case.hpp"
+#include "validation/case.hpp"
 
 #include <algorithm>
 #include <cmath>
 #include <sstream>
 
-#include "core/error.hpp"
-#include "run/stability_sweep.hpp"
+#include "solver/core/error.hpp"
+#include "solver/run/stability_sweep.hpp"
 
 namespace asperity::validation {
 namespace {

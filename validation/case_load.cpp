@@ -1,18 +1,18 @@
 // Validation cases: loading them and their analytic references (a file of its own, so that the
 // case fuzzer, tests/fuzz/fuzz_case.cpp, builds without the runners).
-#include "case.hpp"
+#include "validation/case.hpp"
 
 #include <algorithm>
 #include <cmath>
 #include <numbers>
 #include <sstream>
 
-#include "contact/hertz_impact.hpp"
-#include "core/error.hpp"
-#include "io/json_file.hpp"
-#include "io/plain_name.hpp"
-#include "run/summary_keys.hpp"
-#include "scene/scene_json.hpp"
+#include "solver/contact/hertz_impact.hpp"
+#include "solver/core/error.hpp"
+#include "solver/io/json_file.hpp"
+#include "solver/io/plain_name.hpp"
+#include "solver/run/summary_keys.hpp"
+#include "solver/scene/scene_json.hpp"
 
 namespace asperity::validation {
 namespace {

@@ -1,9 +1,9 @@
 // JUnit XML writer (the schema's common subset that GitLab, GitHub actions and Jenkins read).
-#include "junit.hpp"
+#include "validation/junit.hpp"
 
 #include <sstream>
 
-#include "io/atomic_file.hpp"
+#include "solver/io/atomic_file.hpp"
 
 namespace asperity::validation {
 namespace {

@@ -1,7 +1,7 @@
 // Temporary file plus rename: readers see the old file or the new one, never a partial one. The
 // rename replaces whatever has the final name, so the final name is checked first: run as root,
 // `--junit /dev/null` once replaced the system's /dev/null device with a regular file.
-#include "io/atomic_file.hpp"
+#include "solver/io/atomic_file.hpp"
 
 #include <fcntl.h>
 #include <sys/stat.h>
@@ -13,8 +13,8 @@
 #include <stdexcept>
 #include <system_error>
 
-#include "core/error.hpp"
-#include "core/interrupt.hpp"
+#include "solver/core/error.hpp"
+#include "solver/core/interrupt.hpp"
 
 namespace asperity::io {
 namespace {

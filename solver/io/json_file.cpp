@@ -1,6 +1,6 @@
 // Checked JSON access for input files (scenes, validation cases, studies).
-#include "io/json_file.hpp"
-#include "io/printable.hpp"
+#include "solver/io/json_file.hpp"
+#include "solver/io/printable.hpp"
 
 #include <sys/stat.h>
 
@@ -12,7 +12,7 @@
 #include <sstream>
 #include <vector>
 
-#include "core/error.hpp"
+#include "solver/core/error.hpp"
 
 namespace asperity::io {
 namespace {

@@ -8,9 +8,9 @@
 #include <cstdio>
 #include <string>
 
-#include "core/energy.hpp"
-#include "core/format.hpp"
-#include "io/printable.hpp"
+#include "solver/core/energy.hpp"
+#include "solver/core/format.hpp"
+#include "solver/io/printable.hpp"
 
 namespace asperity::run {
 

@@ -4,9 +4,9 @@
 #include <cstddef>
 #include <cstdint>
 
-#include "case.hpp"
-#include "core/error.hpp"
-#include "fuzz_input_file.hpp"
+#include "solver/core/error.hpp"
+#include "tests/fuzz/fuzz_input_file.hpp"
+#include "validation/case.hpp"
 
 extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size) {
   try {

@@ -12,8 +12,8 @@
 
 #include <gtest/gtest.h>
 
-#include "core/error.hpp"
-#include "io/atomic_file.hpp"
+#include "solver/core/error.hpp"
+#include "solver/io/atomic_file.hpp"
 
 namespace asperity::io {
 namespace {
