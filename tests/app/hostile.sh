@@ -386,7 +386,8 @@ bad "particle --flatness 5e-324" "--flatness must lie in \[0\.05, 1\]" \
 # cannot start leaves the work to those that did (every thread's stack made larger than the
 # address space: no thread starts but the main one)
 mkdir -p "$work/jobs"
-(cd "$cwd" && ulimit -v $((4 * 1024 * 1024)) && timeout 120 "$bin" validate "$case_file" --out "$work/jobs/a" -q -j 100000) \
+if [ "$mem_kb" = unlimited ]; then cap=unlimited; else cap=$((4 * 1024 * 1024)); fi
+(cd "$cwd" && ulimit -v "$cap" && timeout 120 "$bin" validate "$case_file" --out "$work/jobs/a" -q -j 100000) \
   2> "$work/stderr"
 rc=$?
 check "validate -j 100000 under a 4 GiB cap: exit 0 (got $rc: $(head -c 300 "$work/stderr"))" test "$rc" -eq 0
@@ -418,6 +419,9 @@ pid2=$!
 sleep 4
 kill -s INT "$pid" "$pid2"
 wait "$pid" "$pid2"
+sleep 1
+check "an interrupted mesh leaves no TetGen process behind" \
+  test -z "$(pgrep -f -- "--out $work/slow-mesh")"
 check "a study says its meshes at once ($(head -c 200 "$work/slow-study.err"))" grep -q '^meshes: 2 to do' "$work/slow-study.err"
 check "mesh says its estimate before TetGen ($(head -c 200 "$work/slow-mesh.err"))" \
   grep -qE 'particle-seed3-320\.off: tetrahedralizing, about [0-9.e+]+ M tetrahedra estimated \(TetGen stops at 300 s\)' "$work/slow-mesh.err"
