@@ -241,6 +241,7 @@ RunResult run_spheres(const scene::SceneDef& s, const RunOptions& options) {
   j["profile"] = profile_json(w.profile, loop.seconds_per_tick, false);
   j["neighbour_rebuilds"] = w.rebuilds;
   j["contact_updates"] = w.contact_updates;
+  j["state_bytes"] = dem::state_bytes(w);
   j["damping"] = {{"form", s.contact.law == scene::ContactLaw::linear
                                ? "F = kn d + zeta sqrt(m* kn) d'"
                                : "F = K d^1.5 + zeta sqrt(m* K) d^0.25 d' (Tsuji form)"},
