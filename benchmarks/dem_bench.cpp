@@ -6,9 +6,9 @@
 
 #include <benchmark/benchmark.h>
 
-#include "core/clock.hpp"
-#include "dem/sphere_world.hpp"
-#include "run/run_scene.hpp"
+#include "solver/core/clock.hpp"
+#include "solver/dem/sphere_world.hpp"
+#include "solver/run/run_scene.hpp"
 
 namespace {
 
@@ -93,7 +93,7 @@ void BM_Packing10k(benchmark::State& state) {
 }
 BENCHMARK(BM_Packing10k)->Arg(0)->Arg(1)->ArgName("mindlin")->Unit(benchmark::kMillisecond);
 
-// A whole `asperity run` of the bed of validation/tools/bed_scene.py at N spheres (a cube of side
+// A whole `asperity run` of the bed of tools/cases/bed_scene.py at N spheres (a cube of side
 // ∛N on the plane, glass, Hertz–Mindlin, dt 2.5e-7 s, 20 steps), built in memory instead of read
 // from a scene file (a million spheres is 177 MB of JSON, over the loader's 64 MiB,
 // docs/hostile.md): the set-up (the world, its starting-overlap check on the cell grid, the

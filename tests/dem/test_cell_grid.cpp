@@ -5,10 +5,10 @@
 
 #include <gtest/gtest.h>
 
-#include "core/error.hpp"
-#include "dem/cell_grid.hpp"
-#include "run/run_scene.hpp"
-#include "scenes.hpp"
+#include "scenes/dem_scenes.hpp"
+#include "solver/core/error.hpp"
+#include "solver/dem/cell_grid.hpp"
+#include "solver/run/run_scene.hpp"
 
 using namespace asperity;
 
