@@ -2,7 +2,9 @@
 // asperity and in each peer, side by side (peers/, docs/crosscheck.md).
 #include <memory>
 
+#include "app/cli_numbers.hpp"
 #include "app/commands.hpp"
+#include "app/out_folder.hpp"
 #include "peers/crosscheck.hpp"
 #include "peers/peer.hpp"
 
@@ -34,7 +36,7 @@ void add_crosscheck_command(CLI::App& app, Action& action) {
   cc->add_option("--max-rel-diff", args->o.max_rel_diff,
                  "Exit 1 unless peak force, impulse and contact duration agree with every peer "
                  "within this relative difference")
-      ->check(CLI::PositiveNumber);
+      ->check(real_number(0, 1e6, true));
   cc->add_option("--junit", args->o.junit,
                  "Also write JUnit XML: one testcase per peer and compared quantity");
   cc->add_flag("--only-expressible", args->o.only_expressible,
@@ -47,6 +49,9 @@ void add_crosscheck_command(CLI::App& app, Action& action) {
   cc->add_flag("-q,--quiet", args->o.quiet, "No summary lines on stderr");
   cc->callback([args, &action] {
     action = [args] {
+      // A bad --out or --junit is exit 2 before anything runs.
+      check_out_folder(args->o.out);
+      if (args->o.junit) check_out_file(*args->o.junit, "--junit");
       peers::CrosscheckOptions o = args->o;
       if (!args->peers.empty()) o.peers = args->peers;
       for (const auto& [peer, exe] : {std::pair{"yade", args->yade},

@@ -1,6 +1,7 @@
 // `asperity mesh INPUT --faces N --out DIR [--element-size H]`: check and repair a surface mesh,
 // simplify it to exactly N triangles, tetrahedralize it keeping them (bisected in their planes to
 // H when given); DIR/surface.off, DIR/tets.vtk, DIR/mesh.json.
+#include <cmath>
 #include <filesystem>
 #include <iostream>
 #include <memory>
@@ -9,6 +10,7 @@
 #include "app/commands.hpp"
 #include "app/out_folder.hpp"
 #include "solver/core/error.hpp"
+#include "solver/core/format.hpp"
 #include "solver/geometry/mesh_pipeline.hpp"
 
 namespace asperity::app {
@@ -35,13 +37,21 @@ int cmd_mesh(const MeshArgs& a) {
   options.tet.min_dihedral_deg = a.min_dihedral;
   if (a.element_size_given) {
     if (!(a.element_size > 0)) {  // NaN too
-      throw InputError(a.input.string() + ": --element-size: " + std::to_string(a.element_size) +
+      throw InputError(a.input.string() + ": --element-size: " + fmt(a.element_size) +
                        " is not a positive length in metres");
     }
     options.tet.element_size.size = a.element_size;
     options.element_size_key = a.input.string() + ": --element-size";
   }
   check_out_folder(a.out);
+  if (!a.quiet && a.element_size_given) {
+    // A fine element size meshes for minutes with nothing else to show (issue 31, class 11).
+    const double budget = options.tet.time_budget_s;
+    options.on_tetrahedralize = [&a, budget](double tets) {
+      std::cerr << a.input.string() << ": tetrahedralizing, about " << std::round(tets / 1e3) / 1e3
+                << " M tetrahedra estimated (TetGen stops at " << budget << " s)\n";
+    };
+  }
   const geometry::PreparedParticle p = geometry::prepare_particle(a.input, options);
   geometry::write_prepared_particle(p, a.out);
   if (!a.quiet) {

@@ -3,7 +3,10 @@
 #include <filesystem>
 #include <iostream>
 #include <limits>
+#include <map>
 #include <memory>
+#include <utility>
+#include <vector>
 
 #include "app/cli_numbers.hpp"
 #include "app/commands.hpp"
@@ -13,6 +16,7 @@
 #include "solver/geometry/repair_mesh.hpp"
 #include "solver/geometry/write_mesh.hpp"
 #include "solver/io/json_file.hpp"
+#include "solver/io/plain_name.hpp"
 
 namespace asperity::app {
 namespace {
@@ -38,14 +42,20 @@ void make_particle(const geometry::ParticleDef& def, const fs::path& out, bool q
 }
 
 // data/particles/set.json: {"particles": [{"name", "seed", "size", ...}, ...]}; keys not given
-// take ParticleDef's defaults.
+// take ParticleDef's defaults. Every entry is read and checked before any particle is made: a bad
+// entry is exit 2 with nothing written.
 int make_set(const fs::path& set_file, const fs::path& dir, bool quiet) {
   const io::Json json = io::read_json_file(set_file);
   const io::JsonReader root(json, set_file, "");
   root.only_keys({"description", "format", "particles"});
   const std::string format = root.has("format") ? root.string("format") : "off";
+  if (format != "off" && format != "obj" && format != "ply" && format != "stl")
+    root.fail("format", "must be off, obj, ply or stl (got " + io::echo(format) + ")");
   const io::JsonReader list = root.child("particles");
   const std::size_t n = list.require_array();
+  if (n == 0) list.fail("", "lists no particle");
+  std::vector<std::pair<geometry::ParticleDef, fs::path>> todo;
+  std::map<std::string, std::size_t> seen;  // name -> index, for duplicates
   for (std::size_t i = 0; i < n; ++i) {
     const io::JsonReader r = list.at(i);
     r.only_keys(
@@ -61,8 +71,16 @@ int make_set(const fs::path& set_file, const fs::path& dir, bool quiet) {
     if (r.has("faces")) d.faces = static_cast<long>(r.integer("faces", 20, 2'000'000));
     if (const std::string problem = geometry::particle_def_problem(d); !problem.empty())
       r.fail("", problem);
-    make_particle(d, dir / (r.string("name") + "." + format), quiet);
+    // The name is a file under --out: the rule every command applies to such names.
+    const std::string name = r.string("name");
+    if (const std::string problem = io::plain_name_problem(name); !problem.empty())
+      r.fail("name", problem);
+    if (const auto [it, fresh] = seen.emplace(name, i); !fresh)
+      r.fail("name",
+             io::echo(name) + " is also the name of particles[" + std::to_string(it->second) + "]");
+    todo.emplace_back(d, dir / (name + "." + format));
   }
+  for (const auto& [d, file] : todo) make_particle(d, file, quiet);
   return kExitOk;
 }
 
@@ -109,7 +127,7 @@ void add_particle_command(CLI::App& app, Action& action) {
       }
       check_out_file(args->out);
       if (const std::string problem = geometry::particle_def_problem(args->def); !problem.empty()) {
-        throw InputError("particle: " + problem);
+        throw InputError("particle: --" + problem);  // the problem starts with the key
       }
       make_particle(args->def, args->out, args->quiet);
       return kExitOk;

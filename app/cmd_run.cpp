@@ -6,6 +6,9 @@
 #include "app/commands.hpp"
 #include "app/out_folder.hpp"
 #include "solver/core/error.hpp"
+#include "solver/io/atomic_file.hpp"
+#include "solver/io/json_file.hpp"
+#include "solver/io/printable.hpp"
 #include "solver/run/run_scene.hpp"
 #include "solver/scene/scene.hpp"
 
@@ -25,10 +28,8 @@ int cmd_run(const Args& a) {
   check_out_folder(a.out);
   // An earlier run's outputs in the same folder would pass for this run's if it is interrupted
   // or fails: they go before it starts (summary.json, written last, marks a complete run).
-  for (const char* f : {"summary.json", "force.csv", "energy.csv"}) {
-    std::error_code ec;
-    fs::remove(a.out / f, ec);
-  }
+  for (const char* f : {"summary.json", "force.csv", "energy.csv"})
+    io::remove_earlier_output(a.out / f);
   run::RunOptions options{.dt = std::nullopt,
                           .allow_unsafe_dt = a.allow_unsafe_dt,
                           .keep_rows = true,
@@ -45,7 +46,9 @@ int cmd_run(const Args& a) {
   const fs::path& out = a.out;
   const bool quiet = a.quiet;
   if (!quiet) {
-    std::cerr << s.name << ": " << r.status << (r.message.empty() ? "" : " (" + r.message + ")")
+    // The scene's name and the message (which names bodies) are input: escaped and cut.
+    std::cerr << io::printable(s.name, io::kEchoChars) << ": " << r.status
+              << (r.message.empty() ? "" : " (" + io::printable(r.message, 300) + ")")
               << ", peak force " << r.summary["peak_force"].get<double>() << " N, "
               << r.summary["steps"].get<long>() << " steps in "
               << r.summary["cpu_seconds"].get<double>() << " s CPU -> " << out.string() << "\n";

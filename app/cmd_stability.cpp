@@ -4,6 +4,7 @@
 #include <memory>
 #include <string>
 
+#include "app/cli_numbers.hpp"
 #include "app/commands.hpp"
 #include "app/out_folder.hpp"
 #include "solver/core/error.hpp"
@@ -32,9 +33,11 @@ void add_stability_command(CLI::App& app, Action& action) {
                       "Comma-separated multiples of the predicted critical step "
                       "(default 0.05,0.1,0.25,0.5,0.75,0.9,1,1.1,1.25,1.5,2,3,5)");
   cmd->add_option(
-      "--reference-factor", args->reference_factor,
-      "Factor of the converged reference run for the accuracy columns (default: the "
-      "smaller of the automatic step's dt_safety and an eighth of the smallest factor)");
+         "--reference-factor", args->reference_factor,
+         "Factor of the converged reference run for the accuracy columns (default: the "
+         "smaller of the automatic step's dt_safety and an eighth of the smallest factor); at most "
+         "1, the predicted critical step: a reference beyond it may be unstable")
+      ->check(real_number(0, 1, true));
   cmd->add_flag("-q,--quiet", args->quiet, "Only errors on stderr");
   cmd->callback([args, &action] {
     action = [args] {
@@ -42,7 +45,6 @@ void add_stability_command(CLI::App& app, Action& action) {
       const std::vector<double> factors = args->factors_option->count() == 0
                                               ? run::default_stability_factors()
                                               : run::parse_factors(args->factors, "--factors");
-      if (args->reference_factor < 0) throw InputError("--reference-factor: must be > 0");
       const scene::SceneDef s = scene::load_scene(args->scene);
       check_out_folder(args->out);
       const auto progress = [&](const run::StabilityRow& r, int k, int n) {

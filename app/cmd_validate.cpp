@@ -47,9 +47,10 @@ void add_validate_command(CLI::App& app, Action& action) {
   validate->add_flag("-q,--quiet", o.quiet, "Only errors on stderr");
   validate->callback([args, &action] {
     action = [args] {
-      // A bad case file, then a bad --out, is exit 2 before anything runs.
+      // A bad case file, then a bad --out or --junit, is exit 2 before anything runs.
       const std::vector<validation::CaseDef> cases = validation::load_cases(args->cases);
       check_out_folder(args->options.out);
+      if (args->options.junit) check_out_file(*args->options.junit, "--junit");
       // A solver that cannot run them is exit 2 before anything runs or is written.
       if (args->solver.any()) {
         peers::check_solver(args->solver, cases);

@@ -9,29 +9,14 @@
 #include "cluster/world.hpp"
 #include "solver/core/error.hpp"
 #include "solver/core/interrupt.hpp"
+#include "solver/io/printable.hpp"
 
 namespace {
 
 // The contract's "one line on stderr": a message quotes input (keys, file names, values), and
 // input may hold newlines, control bytes or megabytes; those are escaped and cut here, once.
 std::string one_line(const std::string& message) {
-  constexpr std::size_t kMax = 600;
-  std::string out;
-  for (const char c : message) {
-    if (out.size() >= kMax) {
-      out += "...";
-      break;
-    }
-    if (static_cast<unsigned char>(c) < 0x20 || c == 0x7f) {
-      static const char* hex = "0123456789abcdef";
-      out += "\\x";
-      out += hex[(static_cast<unsigned char>(c) >> 4) & 0xf];
-      out += hex[static_cast<unsigned char>(c) & 0xf];
-    } else {
-      out += c;
-    }
-  }
-  return out;
+  return asperity::io::printable(message, 600);
 }
 
 }  // namespace

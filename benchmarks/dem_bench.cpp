@@ -1,10 +1,14 @@
-// Throughput of the sphere DEM step: steps/s for one Hertz pair, contact updates/s for a packing.
+// Throughput of the sphere DEM step: steps/s for one Hertz pair, contact updates/s for a packing;
+// and a whole run of a large bed, its set-up against its steps and its memory per sphere.
 #include <cmath>
 #include <numbers>
+#include <string>
 
 #include <benchmark/benchmark.h>
 
+#include "solver/core/clock.hpp"
 #include "solver/dem/sphere_world.hpp"
+#include "solver/run/run_scene.hpp"
 
 namespace {
 
@@ -88,6 +92,61 @@ void BM_Packing10k(benchmark::State& state) {
       static_cast<double>(w.contact_updates - updates0) / static_cast<double>(steps);
 }
 BENCHMARK(BM_Packing10k)->Arg(0)->Arg(1)->ArgName("mindlin")->Unit(benchmark::kMillisecond);
+
+// A whole `asperity run` of the bed of tools/cases/bed_scene.py at N spheres (a cube of side
+// ∛N on the plane, glass, Hertz–Mindlin, dt 2.5e-7 s, 20 steps), built in memory instead of read
+// from a scene file (a million spheres is 177 MB of JSON, over the loader's 64 MiB,
+// docs/hostile.md): the set-up (the world, its starting-overlap check on the cell grid, the
+// critical step) against the steps, and the solver state per sphere (summary.json `state_bytes`,
+// the scene definition apart).
+void BM_BedRun(benchmark::State& state) {
+  const int side = static_cast<int>(std::lround(std::cbrt(static_cast<double>(state.range(0)))));
+  const double r = 1e-3, spacing = 2 * r * (1 + 1e-9), dt = 2.5e-7;
+  scene::SceneDef s;
+  s.name = "bed";
+  s.duration = 20 * dt;
+  s.dt = dt;
+  s.gravity = Vec3(0, 0, -9.81);
+  s.materials = {{.name = "glass",
+                  .density = 2500,
+                  .young = 6.3e10,
+                  .poisson = 0.23,
+                  .friction = 0.3,
+                  .restitution = 0.8}};
+  for (int z = 0; z < side; ++z)
+    for (int y = 0; y < side; ++y)
+      for (int x = 0; x < side; ++x) {
+        std::string name = "s";
+        name += std::to_string(s.bodies.size());
+        s.bodies.push_back(
+            {.name = name,
+             .material = 0,
+             .shape = scene::SphereShape{.radius = r},
+             .position = Vec3(x * spacing, y * spacing, r * (1 + 1e-9) + z * spacing)});
+      }
+  s.bodies.push_back({.name = "floor",
+                      .material = 0,
+                      .shape = scene::PlaneShape{.point = Vec3::Zero(), .normal = Vec3::UnitZ()},
+                      .fixed = true});
+  s.contact.law = scene::ContactLaw::hertz_mindlin;
+  s.record = {.body = static_cast<int>(s.bodies.size()) - 1, .every = 20};
+  double setup = 0, steps = 0, bytes = 0;
+  for (auto _ : state) {
+    const double cpu0 = thread_cpu_seconds();
+    const run::RunResult result = run::run_scene(s, {.keep_rows = false});
+    const double total = thread_cpu_seconds() - cpu0;
+    steps = result.summary["cpu_seconds"].get<double>();
+    setup = total - steps;
+    bytes = result.summary["state_bytes"].get<double>();
+  }
+  const double n = static_cast<double>(side) * side * side;
+  state.counters["spheres"] = n;
+  state.counters["setup_s"] = setup;
+  state.counters["setup_per_sphere_us"] = 1e6 * setup / n;
+  state.counters["step_per_sphere_ns"] = 1e9 * steps / 20 / n;
+  state.counters["state_bytes_per_sphere"] = bytes / n;
+}
+BENCHMARK(BM_BedRun)->Arg(100'000)->Arg(1'000'000)->Iterations(1)->Unit(benchmark::kSecond);
 
 }  // namespace
 

@@ -1,9 +1,11 @@
 // The task pool: a shared queue on rank 0, worker threads on every rank, text messages between.
 #include "cluster/task_pool.hpp"
 
+#include <algorithm>
 #include <chrono>
 #include <mutex>
 #include <optional>
+#include <system_error>
 #include <thread>
 
 #include <nlohmann/json.hpp>
@@ -112,18 +114,44 @@ void remote_worker(World& world, int w, const std::function<TaskReport(int)>& ru
   }
 }
 
+// Starts up to `count` threads running `body(w)` (w = first, first + 1, ...) into `pool`, and
+// returns how many started. A thread that cannot start (the process's thread or address-space
+// limit: each reserves its stack) ends the starting, not the run: the threads already started,
+// and the caller's own, do the work.
+template <class Body>
+int start_threads(std::vector<std::thread>& pool, int first, int count, const Body& body) {
+  int started = 0;
+  for (int w = first; w < first + count; ++w) {
+    try {
+      pool.emplace_back(body, w);
+    } catch (const std::system_error&) {
+      break;
+    }
+    ++started;
+  }
+  return started;
+}
+
 }  // namespace
+
+int worker_count(int threads, int tasks) {
+  const int cores = std::max(1, static_cast<int>(std::thread::hardware_concurrency()));
+  return std::clamp(threads, 1, std::max(1, std::min(tasks, cores)));
+}
 
 std::vector<TaskReport> run_tasks(World& world, int tasks, const std::vector<int>& order,
                                   int threads, const std::function<TaskReport(int)>& run,
                                   const std::function<void(const TaskReport&, int)>& on_report,
                                   PoolStats* stats) {
-  threads = std::max(1, threads);
+  threads = worker_count(threads, tasks);
   if (!world.root()) {
     std::vector<std::thread> pool;
-    for (int w = 0; w < threads; ++w) pool.emplace_back(remote_worker, std::ref(world), w, run);
+    // Worker 0 is this thread; rank 0 counts the workers each rank reports.
+    const int started =
+        start_threads(pool, 1, threads - 1, [&](int w) { remote_worker(world, w, run); });
+    remote_worker(world, 0, run);
     for (std::thread& t : pool) t.join();
-    world.send(0, kRankDone, std::to_string(threads));
+    world.send(0, kRankDone, std::to_string(started + 1));
     std::vector<TaskReport> reports(static_cast<std::size_t>(tasks));
     for (const Json& j : Json::parse(world.receive(0, kReports))) {
       TaskReport r = from_json(j);
@@ -139,12 +167,13 @@ std::vector<TaskReport> run_tasks(World& world, int tasks, const std::vector<int
     }
   };
   std::vector<std::thread> pool;
-  for (int w = 1; w < threads; ++w) pool.emplace_back(local_worker);
-  int workers = threads;
+  int workers = 1 + start_threads(pool, 1, threads - 1, [&](int) { local_worker(); });
   if (world.size() == 1) {
     local_worker();
   } else {
-    pool.emplace_back(local_worker);
+    // The coordinator takes this thread: one more worker thread (if none can start, the other
+    // ranks' workers do the tasks).
+    workers = workers - 1 + start_threads(pool, 0, 1, [&](int) { local_worker(); });
     // The coordinator: answer asks until every other rank has reported its workers done.
     for (int ranks_done = 0; ranks_done < world.size() - 1;) {
       bool idle = true;

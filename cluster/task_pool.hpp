@@ -35,7 +35,12 @@ struct PoolStats {
   double wall_seconds = 0, busy_seconds = 0, idle_fraction = 0, drain_seconds = 0;
 };
 
-// Runs tasks order[0], order[1], ... (each an index below `tasks`) on `threads` workers per rank;
+// The workers a rank runs for `threads` asked: at least 1, at most the tasks and the cores (a
+// thread beyond either only waits, and each reserves its stack: `-j 100000` asked for 800 GB).
+int worker_count(int threads, int tasks);
+
+// Runs tasks order[0], order[1], ... (each an index below `tasks`) on worker_count(threads, tasks)
+// workers per rank (fewer when the system cannot start more threads: then as many as it could);
 // `run` must not throw. `on_report` (rank 0 only, one call at a time) sees each report as it
 // arrives with the count still running. Returns the reports indexed by task (tasks not in
 // `order` keep task = -1), on every rank.

@@ -15,7 +15,9 @@
 #include "peers/peer.hpp"
 #include "solver/core/clock.hpp"
 #include "solver/core/error.hpp"
+#include "solver/io/atomic_file.hpp"
 #include "solver/io/json_file.hpp"
+#include "solver/io/printable.hpp"
 #include "solver/run/run_scene.hpp"
 #include "solver/scene/scene_json.hpp"
 #include "validation/junit.hpp"
@@ -195,9 +197,9 @@ int crosscheck(const CrosscheckOptions& o) {
   }
 
   fs::create_directories(o.out);
-  fs::remove(o.out / "comparison.json");
-  fs::remove(o.out / "cost.json");
-  if (o.junit) fs::remove(*o.junit);
+  io::remove_earlier_output(o.out / "comparison.json");
+  io::remove_earlier_output(o.out / "cost.json");
+  if (o.junit) io::remove_earlier_output(*o.junit);
   const double cpu0 = cpu_seconds();
   const auto wall0 = std::chrono::steady_clock::now();
   const run::RunResult a = run::run_scene(s, {.keep_rows = true});
@@ -331,7 +333,7 @@ int crosscheck(const CrosscheckOptions& o) {
   for (const auto& [name, why] : failed) std::cerr << "asperity: crosscheck: " << why << "\n";
   if (!o.quiet) {
     for (const auto& [name, summary] : done) {
-      std::cerr << s.name << " vs " << name << ": peak force "
+      std::cerr << io::printable(s.name, io::kEchoChars) << " vs " << name << ": peak force "
                 << c["peak_force"]["rel_diff"][name].dump() << ", impulse "
                 << c["impulse"]["rel_diff"][name].dump() << ", duration "
                 << c["contact_duration"]["rel_diff"][name].dump() << " (asperity - " << name << ")/"

@@ -12,6 +12,7 @@
 #include "peers/peer.hpp"
 #include "peers/peer_adapters.hpp"
 #include "solver/core/error.hpp"
+#include "solver/io/atomic_file.hpp"
 #include "solver/run/impact_measures.hpp"
 #include "solver/run/rebound.hpp"
 #include "solver/run/summary.hpp"
@@ -71,13 +72,7 @@ int run_command(const std::string& command) {
 }
 
 void write_file(const fs::path& file, const std::string& text) {
-  const fs::path tmp = file.string() + ".partial-" + std::to_string(::getpid());
-  {
-    std::ofstream out(tmp, std::ios::binary | std::ios::trunc);
-    out << text;
-    if (!out.flush()) throw std::runtime_error(tmp.string() + ": write failed");
-  }
-  fs::rename(tmp, file);
+  io::write_atomically(file, text);
 }
 
 std::string log_tail(const fs::path& file, int n) {
@@ -309,7 +304,8 @@ run::RunResult run_peer(const Adapter& a, const fs::path& exe, const scene::Scen
   const PeerTrace tr = a.run(scene, resolved, exe, dir, RunMode::trace);
   run::RunResult r = measure_trace(scene, resolved, tr, a.name);
   run::write_outputs(r, dir);
-  fs::remove(dir / "energy.csv");  // peers' energy terms are not recorded (docs/crosscheck.md)
+  io::remove_earlier_output(
+      dir / "energy.csv");  // peers' energy terms are not recorded (docs/crosscheck.md)
   return r;
 }
 

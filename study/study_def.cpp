@@ -6,6 +6,8 @@
 
 #include "solver/core/error.hpp"
 #include "solver/io/json_file.hpp"
+#include "solver/io/plain_name.hpp"
+#include "solver/scene/scene.hpp"
 
 namespace asperity::study {
 namespace fs = std::filesystem;
@@ -124,6 +126,7 @@ StudyDef load_study(const fs::path& file) {
       const JsonReader m = list.at(i);
       m.only_keys({"name", "file", "scale"});
       ParticleSource src;
+      if (m.string("file").empty()) m.fail("file", "must name a mesh file (got \"\")");
       src.file = base / m.string("file");
       src.name = m.has("name") ? m.string("name") : src.file.stem().string();
       if (m.has("scale")) src.scale = m.positive("scale");
@@ -134,9 +137,11 @@ StudyDef load_study(const fs::path& file) {
   if (s.particles.empty()) p.fail("", "names no particle (give \"set\" or \"meshes\")");
   for (std::size_t i = 0; i < s.particles.size(); ++i) {
     const std::string& n = s.particles[i].name;
-    if (n.empty() || n.find_first_of("/\\ \t") != std::string::npos || n == "." || n == "..") {
-      p.fail("", "particle name \"" + n + "\" must be a plain file name");
-    }
+    // The name is a file and folder under --out (particles/NAME.off, meshes/NAME-N/).
+    if (const std::string problem = io::plain_name_problem(n); !problem.empty())
+      p.fail("", "particle name " + io::echo(n) + ": " + problem);
+    if (n.find(' ') != std::string::npos)
+      p.fail("", "particle name " + io::echo(n) + ": must not contain spaces (a table cell)");
     for (std::size_t j = 0; j < i; ++j) {
       if (s.particles[j].name == n) p.fail("", "particle name \"" + n + "\" appears twice");
     }
@@ -292,7 +297,9 @@ StudyDef load_study(const fs::path& file) {
                                  ? std::optional<double>()
                                  : r.in_range("end_after_separation", 0, 100, true, false);
   }
-  if (r.has("penalty_alpha")) s.penalty_alpha = r.in_range("penalty_alpha", 0, 1e6, true, false);
+  // The scene's range (a case's scene is refused below it).
+  if (r.has("penalty_alpha"))
+    s.penalty_alpha = r.in_range("penalty_alpha", scene::kMinPenaltyAlpha, 1e6, false, false);
   if (r.has("gravity")) s.gravity = r.in_range("gravity", 0, 1000, false, false);
   const Material rock{
       .name = "particle", .density = 2650, .young = 5e10, .poisson = 0.25, .friction = 0};

@@ -24,6 +24,8 @@
 #include "solver/core/error.hpp"
 #include "solver/fdem/fdem_world.hpp"
 #include "solver/fdem/time_step.hpp"
+#include "solver/geometry/element_size.hpp"
+#include "solver/geometry/mass_properties.hpp"
 #include "solver/geometry/mesh_pipeline.hpp"
 #include "solver/geometry/write_mesh.hpp"
 #include "solver/io/atomic_file.hpp"
@@ -91,7 +93,10 @@ class Progress {
         ranks_(ranks),
         what_(std::move(what)),
         total_(total),
-        total_weight_(total_weight) {}
+        total_weight_(total_weight) {
+    // Said at once: the first report may be minutes away (a fine mesh, a refined case).
+    if (!quiet_ && total_ > 0) std::fprintf(stderr, "%s: %d to do\n", what_.c_str(), total_);
+  }
   // A task of relative cost `weight` reported; `running`: tasks handed out and not yet reported.
   // A task kept from an earlier run leaves the time-left estimate (its weight took no time).
   void done(const cluster::TaskReport& r, double weight, int running) {
@@ -474,6 +479,48 @@ std::vector<SurfaceMesh> make_sources(const StudyDef& def,
   return sources;
 }
 
+// What the study asks of each particle that can be known from its source, checked before the
+// lock and any mesh or case (issue 31, classes 8 and 11):
+// - every resolution at most the source's triangle count (simplification only removes
+//   triangles; every case of the particle failed after the run, and complete-looking tables
+//   were written);
+// - the finest refinement's estimated tetrahedra within the scene loader's limit (a refined case
+//   meshed for minutes in silence, then failed), graded as the case's scene grades it.
+void check_before_run(const StudyDef& def, const std::vector<std::size_t>& particles,
+                      const std::vector<SurfaceMesh>& sources) {
+  const bool polyhedra =
+      std::any_of(def.models.begin(), def.models.end(), [](ModelKind k) { return !is_sphere(k); });
+  for (std::size_t i : particles) {
+    const long have = static_cast<long>(sources[i].faces.cols());
+    for (std::size_t k = 0; k < def.resolutions.size(); ++k) {
+      const long n = def.resolutions[k];
+      if ((polyhedra || n == def.reference) && n > have) {
+        throw InputError(def.file.string() + ": resolutions[" + std::to_string(k) +
+                         "]: " + std::to_string(n) + " triangles is more than particle \"" +
+                         def.particles[i].name + "\" has (" + std::to_string(have) +
+                         "); a particle is only ever simplified");
+      }
+    }
+    const bool fem =
+        std::find(def.models.begin(), def.models.end(), ModelKind::fem) != def.models.end();
+    if (!fem || def.refinement.sizes.empty()) continue;
+    const double radius = geometry::mass_properties(sources[i]).equivalent_radius;
+    Eigen::Index lowest = 0;
+    sources[i].vertices.row(2).minCoeff(&lowest);
+    const double h = def.refinement.sizes.back() * radius;
+    const geometry::ElementSize size{.size = h,
+                                     .focus = sources[i].vertices.col(lowest),
+                                     .focus_radius = def.refinement.focus_radius * h,
+                                     .growth = def.refinement.growth};
+    if (const std::string problem = geometry::element_size_problem(sources[i], size);
+        !problem.empty()) {
+      throw InputError(def.file.string() + ": refinement.sizes[" +
+                       std::to_string(def.refinement.sizes.size() - 1) + "]: particle \"" +
+                       def.particles[i].name + "\": " + problem);
+    }
+  }
+}
+
 // Rank 0 writes the sources for the record.
 void write_sources(const StudyDef& def, const fs::path& out,
                    const std::vector<std::size_t>& particles,
@@ -513,7 +560,7 @@ cluster::TaskReport make_mesh(const StudyDef& def, const fs::path& out, const Me
     }
     const geometry::PreparedParticle prepared = particle_mesh(source, p.name, t.faces);
     fs::create_directories(dir);
-    fs::remove(report);
+    io::remove_earlier_output(report);
     geometry::write_surface_mesh(dir / "surface.off", prepared.surface);
     nlohmann::json j = geometry::mesh_report(prepared);
     j["study_source"] = tag;
@@ -555,7 +602,7 @@ Meshes mesh_particles(const StudyDef& def, const fs::path& out,
   std::stable_sort(order.begin(), order.end(), [&](int a, int b) {
     return m.tasks[static_cast<std::size_t>(a)].faces > m.tasks[static_cast<std::size_t>(b)].faces;
   });
-  Progress progress(quiet, "meshes", n, n, world.size() > 1);
+  Progress progress(quiet || !world.root(), "meshes", n, n, world.size() > 1);
   const std::vector<cluster::TaskReport> reports = cluster::run_tasks(
       world, n, order, jobs,
       [&](int k) {
@@ -642,7 +689,7 @@ cluster::TaskReport run_case(const StudyDef& def, const fs::path& out, const Par
     // Outputs of an earlier, different case go first: only this run's may sit beside the new
     // scene.json.
     for (const char* f : {"case.json", "failed.json", "summary.json", "force.csv", "energy.csv"})
-      fs::remove(dir / f);
+      io::remove_earlier_output(dir / f);
     io::write_atomically(dir / "scene.json", scene_text);
     const scene::SceneDef scene = scene::load_scene(dir / "scene.json");
     const double cpu0 = thread_cpu_seconds(), kept0 = run::kept_mesh_cpu_seconds();
@@ -699,7 +746,7 @@ void run_cases(const StudyDef& def, const fs::path& out,
   double total_weight = 0;
   for (const CaseKey& c : cases) total_weight += case_weight(c);
   outcome.cases = static_cast<int>(cases.size());
-  Progress progress(quiet, "cases", outcome.cases, total_weight, world.size() > 1);
+  Progress progress(quiet || !world.root(), "cases", outcome.cases, total_weight, world.size() > 1);
   cluster::PoolStats stats;
   const std::vector<cluster::TaskReport> reports = cluster::run_tasks(
       world, outcome.cases, order, jobs,
@@ -729,6 +776,7 @@ StudyOutcome run_study(const StudyDef& def, const fs::path& out, const StudyRunO
   const int jobs = thread_count(def, options);
   const std::vector<std::size_t> particles = shard_particles(def, options.shard);
   const std::vector<SurfaceMesh> sources = make_sources(def, particles);
+  check_before_run(def, particles, sources);
   std::optional<FolderLock> lock;
   world.on_root([&] {
     fs::create_directories(out);

@@ -55,10 +55,6 @@ struct CaseResult {
   std::string error;  // the solver failed (a peer or --solver-cmd): why; no checks then
 };
 
-// What is wrong with a case name as a folder name under --out ("" when nothing): empty, "." or
-// "..", a path separator, control characters, over 200 characters.
-std::string case_name_problem(const std::string& name);
-
 // Reads a case; resolves analytic references from its scene. Throws InputError.
 CaseDef load_case(const std::filesystem::path& file);
 

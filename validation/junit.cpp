@@ -1,11 +1,9 @@
 // JUnit XML writer (the schema's common subset that GitLab, GitHub actions and Jenkins read).
 #include "validation/junit.hpp"
 
-#include <unistd.h>
-
-#include <fstream>
 #include <sstream>
-#include <stdexcept>
+
+#include "solver/io/atomic_file.hpp"
 
 namespace asperity::validation {
 namespace {
@@ -77,13 +75,7 @@ void write_junit(const std::filesystem::path& file, const std::string& suite,
   }
   x << "  </testsuite>\n</testsuites>\n";
   if (file.has_parent_path()) std::filesystem::create_directories(file.parent_path());
-  const std::filesystem::path tmp = file.string() + ".partial-" + std::to_string(::getpid());
-  {
-    std::ofstream out(tmp, std::ios::binary | std::ios::trunc);
-    out << x.str();
-    if (!out.flush()) throw std::runtime_error(tmp.string() + ": write failed");
-  }
-  std::filesystem::rename(tmp, file);
+  io::write_atomically(file, x.str());
 }
 
 }  // namespace asperity::validation

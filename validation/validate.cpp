@@ -204,7 +204,7 @@ std::vector<CaseDef> load_cases(const std::vector<fs::path>& paths) {
 }
 
 int validate_cases(const std::vector<CaseDef>& cases, const ValidateOptions& o) {
-  if (o.junit) fs::remove(*o.junit);
+  if (o.junit) io::remove_earlier_output(*o.junit);
   const std::string solved_by = o.solver ? o.solver->name : "asperity";
   cluster::World world;
   return world.guard([&] {

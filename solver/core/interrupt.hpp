@@ -1,6 +1,6 @@
-// SIGINT/SIGTERM: stop at once, but first remove what would mislead (a half-written file, a
-// study's lock). The handler only unlinks registered paths and re-raises the signal with its
-// default action, so the exit status says "killed by SIGINT" (130 in a shell). Only
+// SIGINT/SIGTERM (and SIGABRT): stop at once, but first remove what would mislead (a half-written
+// file, a study's lock). The handler only unlinks registered paths and re-raises the signal with
+// its default action, so the exit status says "killed by SIGINT" (130 in a shell). Only
 // async-signal-safe calls run in the handler (unlink, signal, raise); the paths live in fixed
 // slots of atomic pointers, so a worker thread may register one while the handler runs.
 // Header-only so that geometry and io (siblings in the layering) can both guard their writes.
@@ -31,13 +31,15 @@ inline void on_interrupt(int sig) {
 }
 }  // namespace detail
 
-// Installs the handler for SIGINT and SIGTERM (once, from main).
+// Installs the handler for SIGINT and SIGTERM (once, from main), and for SIGABRT: an abort
+// (std::terminate, a failed assert in a library) must not leave a lock or a temporary either.
 inline void install_interrupt_cleanup() {
   struct sigaction sa {};
   sa.sa_handler = detail::on_interrupt;
   sigemptyset(&sa.sa_mask);
   ::sigaction(SIGINT, &sa, nullptr);
   ::sigaction(SIGTERM, &sa, nullptr);
+  ::sigaction(SIGABRT, &sa, nullptr);
 }
 
 // While alive, `path` is removed if the process is interrupted.

@@ -325,4 +325,18 @@ EnergyBalance energy(const SphereWorld& world) {
   return e;
 }
 
+std::size_t state_bytes(const SphereWorld& world) {
+  const auto doubles = [](const auto& m) {
+    return static_cast<std::size_t>(m.size()) * sizeof(double);
+  };
+  const auto held = [](const auto& v) { return v.capacity() * sizeof(v[0]); };
+  return doubles(world.x) + doubles(world.v) + doubles(world.w) + doubles(world.force) +
+         doubles(world.torque) + doubles(world.v_end) + doubles(world.x_at_build) +
+         doubles(world.x_initial) + held(world.orientation) + held(world.radius) +
+         held(world.mass) + held(world.inertia) + held(world.material) + held(world.body) +
+         held(world.fixed) + held(world.materials) + held(world.pair) + held(world.walls) +
+         held(world.pairs) + held(world.wall_contacts) + doubles(world.contacts.force) +
+         doubles(world.contacts.normal_force) + held(world.contacts.overlap);
+}
+
 }  // namespace asperity::dem

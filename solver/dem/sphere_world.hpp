@@ -1,6 +1,7 @@
 // Rigid-sphere DEM world: spheres against spheres, planes and fixed boxes, plain arrays (SoA).
 #pragma once
 
+#include <cstddef>
 #include <cstdint>
 #include <optional>
 #include <vector>
@@ -108,5 +109,9 @@ void step(SphereWorld& world, double dt);
 
 // Kinetic (translation and rotation), contact, gravity and dissipated terms; no elastic term.
 EnergyBalance energy(const SphereWorld& world);
+
+// Bytes the world's arrays hold (their capacity): the solver's state apart from the scene it was
+// built from (summary.json `state_bytes`).
+std::size_t state_bytes(const SphereWorld& world);
 
 }  // namespace asperity::dem

@@ -441,7 +441,8 @@ std::vector<double> face_rows(const World& w) {
 // How close to the factor the searches below stop, as a fraction of it: the contact factor met
 // lies in [(1 − kMeetTolerance) factor, factor] unless their six steps run out first (1.92–1.96
 // of 2 on 4 of the 161 lowered meshes of the bench_fem set). Each evaluation is one element step
-// bound (up to nine 12×12 eigen-solves per element), and the last few of the six mostly moved
+// bound (up to nine λ_max per element: a closed form, or a 12×12 eigen-solve where a face spring
+// sits), and the last few of the six mostly moved
 // the factor in its third digit: stopping at 2 % took the set-up (make_world + critical_step) of
 // the bench_fem collision at 1000 triangles from 0.91, 0.84, 0.59 to 0.62, 0.60, 0.35 s of CPU on
 // the three of five particles whose faces it lowers (BM_CollisionSetup; reports/fem/mesh_step.md).

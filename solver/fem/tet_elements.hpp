@@ -77,8 +77,9 @@ InternalForceResult add_internal_forces(const TetElements& e, const Eigen::Matri
 // d_e'a, d_ea = tr K_e[a,a] (an element that is stiff at a holds a's mass, as the global mode
 // does), then a few passes move mass toward the elements with the largest λ_e, m_ea ∝ m_ea λ_e^½,
 // keeping the split with the smallest max λ_e. Every split is rigorous, so the passes only sharpen
-// it. λ_e comes from an exact 12×12 symmetric eigen-solve of M_e^-½ K_e M_e^-½, not from L/c, which
-// is not conservative for distorted elements.
+// it. λ_e is exact, not L/c, which is not conservative for distorted elements: the largest root of
+// a cubic for an element alone (tet_elements.cpp, split_eigenvalue_isotropic), a 12×12 symmetric
+// eigen-solve of M_e^-½ K_e M_e^-½ for an element with extra stiffness.
 //
 // `extra` adds stiffness to single elements (e.g. a penalty spring on an element's face, which
 // then takes its share of the node masses like the element's own stiffness); the same argument

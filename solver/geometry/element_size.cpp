@@ -209,8 +209,14 @@ std::string element_size_problem(const SurfaceMesh& surface, const ElementSize& 
   }
   const double tets = estimated_tets(surface, size);
   if (!(tets <= max_tets)) {
-    os << size.size << " m would make about " << static_cast<double>(std::llround(tets / 1e5)) / 10
-       << " M tetrahedra (limit " << max_tets / 1e6 << " M)";
+    // In double arithmetic: a denormal size estimates more tetrahedra than an integer holds
+    // (llround overflowed to -9.2e17 M).
+    os << size.size << " m would make ";
+    if (std::isfinite(tets))
+      os << "about " << std::round(tets / 1e5) / 10 << " M";
+    else
+      os << "more than 1e308";
+    os << " tetrahedra (limit " << max_tets / 1e6 << " M)";
     return os.str();
   }
   return "";

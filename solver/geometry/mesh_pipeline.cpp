@@ -52,6 +52,11 @@ PreparedParticle finish(PreparedParticle p, const PipelineOptions& options) {
                          std::to_string(p.surface.faces.cols()) + " triangles)");
       }
     }
+    if (options.on_tetrahedralize) {
+      options.on_tetrahedralize(options.tet.element_size.set()
+                                    ? estimated_tets(p.surface, options.tet.element_size)
+                                    : 0.0);
+    }
     t0 = std::chrono::steady_clock::now();
     p.element_size = options.tet.element_size;
     try {

@@ -4,6 +4,7 @@
 #pragma once
 
 #include <filesystem>
+#include <functional>
 #include <string>
 
 #include <nlohmann/json.hpp>
@@ -26,6 +27,9 @@ struct PipelineOptions {
   // How a bad tet.element_size is named in the InputError: the scene file and key, or the
   // command and option; empty: "SOURCE: element_size".
   std::string element_size_key;
+  // Called just before TetGen starts, with the estimated tetrahedra (0 without an element size):
+  // a command says there what may take minutes (TetGen's time budget, TetOptions).
+  std::function<void(double estimated_tets)> on_tetrahedralize;
 };
 
 struct PreparedParticle {

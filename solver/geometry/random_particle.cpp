@@ -46,12 +46,16 @@ long particle_face_count(long faces) {
 
 std::string particle_def_problem(const ParticleDef& d) {
   std::ostringstream s;
-  if (!(d.size > 0) || !std::isfinite(d.size))
-    s << "size must be a positive length in m (got " << d.size << ")";
-  else if (!(d.elongation > 0 && d.elongation <= 1))
-    s << "elongation must lie in (0, 1] (got " << d.elongation << ")";
-  else if (!(d.flatness > 0 && d.flatness <= 1))
-    s << "flatness must lie in (0, 1] (got " << d.flatness << ")";
+  // The usable ranges: a size whose cube (the volume) and whose square over the smallest
+  // triangle stay far inside a double, in the units a rock is measured in (1 µm to 1 km); axis
+  // ratios down to 1:20, below which a cut or the roughness folds the thin body through itself.
+  if (!(d.size >= kParticleSizeMin && d.size <= kParticleSizeMax))
+    s << "size must lie in [" << kParticleSizeMin << ", " << kParticleSizeMax << "] m (got "
+      << d.size << ")";
+  else if (!(d.elongation >= kParticleAxisRatioMin && d.elongation <= 1))
+    s << "elongation must lie in [" << kParticleAxisRatioMin << ", 1] (got " << d.elongation << ")";
+  else if (!(d.flatness >= kParticleAxisRatioMin && d.flatness <= 1))
+    s << "flatness must lie in [" << kParticleAxisRatioMin << ", 1] (got " << d.flatness << ")";
   else if (!(d.angularity >= 0 && d.angularity <= 1))
     s << "angularity must lie in [0, 1] (got " << d.angularity << ")";
   else if (!(d.roughness >= 0 && d.roughness <= 1))

@@ -22,7 +22,12 @@ struct ParticleDef {
 // geodesic icosphere of frequency n (e.g. 20480 for n = 32, 60500 for n = 55).
 long particle_face_count(long faces);
 
-// Checks the ranges above; returns "" or the problem ("elongation must lie in (0, 1] (got 2)").
+// The usable ranges of size (m) and of the axis ratios elongation and flatness.
+inline constexpr double kParticleSizeMin = 1e-6, kParticleSizeMax = 1e3;
+inline constexpr double kParticleAxisRatioMin = 0.05;
+
+// Checks the ranges above; returns "" or the problem, which starts with the key
+// ("elongation must lie in [0.05, 1] (got 2)").
 std::string particle_def_problem(const ParticleDef& def);
 
 // A star-shaped particle r(u)·u over the unit sphere, built on a geodesic icosphere (each

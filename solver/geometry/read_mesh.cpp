@@ -5,6 +5,7 @@
 
 #include <algorithm>
 #include <array>
+#include <charconv>
 #include <cmath>
 #include <cstdint>
 #include <cstring>
@@ -101,6 +102,34 @@ std::size_t count_nonfinite_tokens(const fs::path& file) {
     if (t.compare(s, 3, "nan") == 0 || t.compare(s, 3, "inf") == 0) ++n;
   }
   return n;
+}
+
+// An OBJ face's vertex index beyond the file's vertices (1-based, or negative from the end):
+// CGAL's reader drops an index it cannot hold, so such a face came back short and was reported
+// as "fewer than 3 vertices". "" when every index is in range. Read only when a face is wrong.
+std::string obj_index_problem(const fs::path& file, std::size_t vertices) {
+  std::ifstream in(file);
+  std::string line;
+  for (long number = 1; std::getline(in, line); ++number) {
+    std::istringstream words(line);
+    std::string word;
+    if (!(words >> word) || word != "f") continue;
+    while (words >> word) {
+      const std::string index = word.substr(0, word.find('/'));
+      if (index.empty()) return "line " + std::to_string(number) + ": a face vertex without index";
+      long long v = 0;
+      const char* b = index.data();
+      const auto [end, ec] = std::from_chars(b + (index[0] == '+' ? 1 : 0), b + index.size(), v);
+      const auto n = static_cast<long long>(vertices);
+      const bool in_range =
+          ec == std::errc{} && end == b + index.size() && v != 0 && v >= -n && v <= n;
+      if (!in_range) {
+        return "line " + std::to_string(number) + ": face vertex index \"" + index.substr(0, 40) +
+               "\" is out of range (the file has " + std::to_string(vertices) + " vertices)";
+      }
+    }
+  }
+  return "";
 }
 
 // CGAL's readers may print their own diagnostics to std::cerr (its PLY reader, used before
@@ -213,11 +242,28 @@ PolygonSoup read_mesh_file(const fs::path& file, const ReadOptions& options) {
     fail(file, std::to_string(nonfinite) + " vertices with NaN or infinite coordinates");
   }
   soup.points *= options.scale;
+  // Coordinates a particle can have: beyond them its volume (x^3) and inertia (x^5) overflow a
+  // double, which was reported as "zero volume (-nan)".
+  const std::size_t far = static_cast<std::size_t>(
+      (soup.points.array().abs() > kMaxCoordinate).colwise().any().count());
+  if (far > 0) {
+    std::ostringstream s;
+    s << far << " vertices farther than " << kMaxCoordinate
+      << " m from the origin in some axis (after scale " << options.scale
+      << "): not a particle's coordinates";
+    fail(file, s.str());
+  }
   std::size_t bad_index = 0, too_small = 0;
   for (const auto& poly : soup.polygons) {
     if (poly.size() < 3) ++too_small;
     for (int v : poly)
       if (v < 0 || v >= soup.points.cols()) ++bad_index;
+  }
+  if (ext == ".obj" && (bad_index > 0 || too_small > 0)) {
+    if (const std::string problem =
+            obj_index_problem(file, static_cast<std::size_t>(soup.points.cols()));
+        !problem.empty())
+      fail(file, problem);
   }
   if (bad_index > 0) {
     fail(file, std::to_string(bad_index) + " face vertex indices out of range (the file has " +

@@ -19,6 +19,11 @@ struct PolygonSoup {
 // The largest mesh file read: a 10-million-triangle binary STL is 500 MB.
 inline constexpr std::uintmax_t kMaxMeshBytes = 1u << 30;  // 1 GiB
 
+// The farthest a vertex may lie from the origin in any axis, m (after the scale): a particle is
+// millimetres to metres across, and a volume (x^3) or inertia (x^5) of far larger coordinates
+// overflows a double.
+inline constexpr double kMaxCoordinate = 1e6;
+
 struct ReadOptions {
   double scale = 1.0;  // multiplies every coordinate: 1e-3 for a mesh in millimetres
 };
@@ -29,7 +34,8 @@ struct ReadOptions {
 // "FILE: problem" for: a missing or empty file, an unknown extension, a truncated binary STL
 // (declared against actual triangle count), content that does not parse as the format (with a
 // hint when it looks like another format; OFF and PLY name the line, element or byte), NaN or
-// infinite coordinates (with their count), a polygon index out of range, a file with no faces,
+// infinite coordinates (with their count), coordinates beyond kMaxCoordinate, a polygon index
+// out of range (OBJ: the line and the index), a file with no faces,
 // and a scale that is not positive and finite; and before any reader runs: anything but a regular
 // file and a file over kMaxMeshBytes.
 PolygonSoup read_mesh_file(const std::filesystem::path& file, const ReadOptions& options = {});

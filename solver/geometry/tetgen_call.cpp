@@ -13,6 +13,7 @@
 #include <fcntl.h>
 #include <poll.h>
 #include <signal.h>
+#include <sys/prctl.h>
 #include <sys/wait.h>
 #include <tetgen.h>
 #include <unistd.h>
@@ -201,6 +202,7 @@ IsolatedResult run_tetgen_isolated(const TetgenJob& job, double seconds) {
   }
   int err[2] = {-1, -1};
   if (pipe(err) != 0) err[0] = err[1] = -1;
+  const pid_t parent = getpid();
   const pid_t pid = fork();
   if (pid < 0) {
     for (const int f : {fd[0], fd[1], err[0], err[1]})
@@ -219,6 +221,10 @@ IsolatedResult run_tetgen_isolated(const TetgenJob& job, double seconds) {
     return true;
   };
   if (pid == 0) {  // child: mesh, send, and leave without running the parent's exit handlers
+    // An interrupted parent (SIGINT, SIGTERM) must not leave TetGen meshing on alone for up to
+    // its time budget: the child goes with it (and at once if the parent is already gone).
+    prctl(PR_SET_PDEATHSIG, SIGKILL);
+    if (getppid() != parent) _exit(1);
     close(fd[0]);
     // TetGen's assert message is the parent's to summarise, not to print: it goes to the
     // parent through its own pipe, and names the failed check in the parent's one line.

@@ -254,21 +254,29 @@ TetMesh tetrahedralize(const SurfaceMesh& input, const TetOptions& options_in) {
   // std::runtime_error.
   const TetgenJob first = job_for(surface, {}, options);
   IsolatedResult r = run_tetgen_isolated(first, options.time_budget_s);
+  // The bounds asked for, in the terms they were asked in: a smallest dihedral angle the surface
+  // cannot give was reported as "quality 2" alone.
   std::ostringstream bound;
   bound << "radius-edge bound (quality) " << options.radius_edge_ratio;
+  if (options.min_dihedral_deg > 0)
+    bound << " and smallest dihedral angle " << options.min_dihedral_deg << " deg";
+  const std::string looser =
+      options.min_dihedral_deg > 0
+          ? "ask for a smaller dihedral angle (TetGen's default is 0, none) or a looser bound "
+            "(>= 1.2)"
+          : "ask for a looser bound (>= 1.2)";
   if (r.timed_out) {
     throw InputError("tetrahedralization did not finish within its time budget of " +
                      std::to_string(static_cast<long>(options.time_budget_s)) + " s (" +
                      bound.str() + ", " + std::to_string(surface.faces.cols()) +
-                     " surface triangles); ask for a looser bound (>= 1.2) or a larger element "
-                     "size");
+                     " surface triangles); " + looser + " or a larger element size");
   }
   if (!r.mesh) throw std::runtime_error(r.failure);
   TetMesh tm = std::move(*r.mesh);
   if (options.max_steiner_points >= 0 && steiner_points(first, tm) >= options.max_steiner_points) {
     throw InputError("the " + bound.str() + " needs more than the budget of " +
                      std::to_string(options.max_steiner_points) +
-                     " interior points on this surface; ask for a looser bound (>= 1.2)");
+                     " interior points on this surface; " + looser);
   }
   if (options.min_surface_height_ratio <= 0) return tm;
   const Eigen::Index nf = surface.faces.cols();

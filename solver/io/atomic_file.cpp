@@ -1,20 +1,64 @@
-// Temporary file plus rename: readers see the old file or the new one, never a partial one.
+// Temporary file plus rename: readers see the old file or the new one, never a partial one. The
+// rename replaces whatever has the final name, so the final name is checked first: run as root,
+// `--junit /dev/null` once replaced the system's /dev/null device with a regular file.
 #include "solver/io/atomic_file.hpp"
 
+#include <fcntl.h>
+#include <sys/stat.h>
 #include <unistd.h>
 
+#include <cerrno>
 #include <fstream>
 #include <limits>
 #include <stdexcept>
 #include <system_error>
 
+#include "solver/core/error.hpp"
 #include "solver/core/interrupt.hpp"
 
 namespace asperity::io {
+namespace {
+
+std::string kind_of(mode_t mode) {
+  if (S_ISDIR(mode)) return "a folder";
+  if (S_ISCHR(mode) || S_ISBLK(mode)) return "a device";
+  if (S_ISFIFO(mode)) return "a FIFO";
+  if (S_ISSOCK(mode)) return "a socket";
+  return "not a regular file";
+}
+
+// Creates `tmp` as a new, empty regular file of this process (O_EXCL: never one that is there,
+// O_NOFOLLOW: never through a link), so that only what this process made is ever removed.
+void create_own(const std::filesystem::path& tmp) {
+  const int fd = ::open(tmp.c_str(), O_WRONLY | O_CREAT | O_EXCL | O_NOFOLLOW | O_CLOEXEC, 0666);
+  if (fd < 0) {
+    throw std::runtime_error(tmp.string() + ": cannot create (" +
+                             std::error_code(errno, std::generic_category()).message() + ")");
+  }
+  ::close(fd);
+}
+
+}  // namespace
+
+std::string not_replaceable(const std::filesystem::path& path) {
+  struct stat st {};
+  if (::lstat(path.c_str(), &st) != 0) return "";  // nothing there (or unreachable: open says)
+  if (S_ISREG(st.st_mode)) return "";
+  if (S_ISLNK(st.st_mode)) {
+    // A link is replaced by the output (its target untouched); a link to a device or a folder
+    // says the user meant the target, which is refused like the target itself.
+    if (::stat(path.c_str(), &st) != 0 || S_ISREG(st.st_mode)) return "";
+    return "a link to " + kind_of(st.st_mode);
+  }
+  return kind_of(st.st_mode);
+}
 
 void write_atomically(const std::filesystem::path& file,
                       const std::function<void(std::ostream&)>& fill) {
+  if (const std::string what = not_replaceable(file); !what.empty())
+    throw std::runtime_error(file.string() + ": is " + what + "; not replaced by an output file");
   const std::filesystem::path tmp = file.string() + ".partial-" + std::to_string(::getpid());
+  create_own(tmp);
   // The temporary goes whatever happens: a failed write (disk full), an exception in `fill` or
   // an interrupt must not leave a *.partial-PID beside complete-looking files.
   const RemoveOnInterrupt guard(tmp);
@@ -27,6 +71,9 @@ void write_atomically(const std::filesystem::path& file,
       out.flush();
       if (!out) throw std::runtime_error(tmp.string() + ": write failed");
     }
+    // Checked again just before the rename: the run may have been long.
+    if (const std::string what = not_replaceable(file); !what.empty())
+      throw std::runtime_error(file.string() + ": is " + what + "; not replaced by an output file");
     std::filesystem::rename(tmp, file);
   } catch (...) {
     std::error_code ec;
@@ -37,6 +84,15 @@ void write_atomically(const std::filesystem::path& file,
 
 void write_atomically(const std::filesystem::path& file, const std::string& text) {
   write_atomically(file, [&](std::ostream& out) { out << text; });
+}
+
+void remove_earlier_output(const std::filesystem::path& path) {
+  if (const std::string what = not_replaceable(path); !what.empty()) {
+    throw InputError(path.string() + ": is " + what +
+                     " where an output file goes; asperity neither replaces nor removes it");
+  }
+  std::error_code ec;
+  std::filesystem::remove(path, ec);
 }
 
 }  // namespace asperity::io

@@ -1,5 +1,6 @@
 // Checked JSON access for input files (scenes, validation cases, studies).
 #include "solver/io/json_file.hpp"
+#include "solver/io/printable.hpp"
 
 #include <sys/stat.h>
 
@@ -200,6 +201,10 @@ std::string closest_key(std::string_view key, std::span<const std::string_view> 
   std::string best;
   std::size_t best_d = 3;  // suggest only near misses: at most two edits
   for (std::string_view cand : allowed) {
+    // The distance is at least the difference in length: a key far longer than every allowed one
+    // (a 60 MB key) costs nothing here, not length × candidates steps.
+    const std::size_t longer = std::max(key.size(), cand.size());
+    if (longer - std::min(key.size(), cand.size()) >= best_d) continue;
     std::vector<std::size_t> row(cand.size() + 1);
     for (std::size_t j = 0; j <= cand.size(); ++j) row[j] = j;
     for (std::size_t i = 1; i <= key.size(); ++i) {
@@ -230,9 +235,9 @@ std::string JsonReader::key_path(std::string_view key) const {
 }
 
 void JsonReader::fail(std::string_view key, const std::string& problem) const {
-  std::string where = key_path(key);
-  // A key is input too: a 10 MB key must not become a 10 MB message.
-  if (where.size() > 2 * kEchoChars) where = where.substr(0, 2 * kEchoChars) + "...";
+  // A key is input too: a 10 MB key must not become a 10 MB message, and a control character in
+  // it (a NUL would end the message where it is read as a C string) is written as \xHH.
+  const std::string where = printable(key_path(key), 2 * kEchoChars);
   throw InputError(file_.string() + ": " + (where.empty() ? "" : where + ": ") + problem);
 }
 

@@ -10,6 +10,7 @@
 
 #include "solver/core/energy.hpp"
 #include "solver/core/format.hpp"
+#include "solver/io/printable.hpp"
 
 namespace asperity::run {
 
@@ -18,7 +19,7 @@ class RunMonitor {
   // growth_limit: the scene's unstable_energy_growth; n_steps for the progress line.
   RunMonitor(const std::string& name, const EnergyBalance& e0, double growth_limit, long n_steps,
              bool progress)
-      : name_(name),
+      : name_(io::printable(name, 80)),  // the scene's name is input: escaped and cut
         e0_(e0),
         total0_(e0.total()),
         supplied_(e0.kinetic + e0.elastic + e0.contact),

@@ -23,8 +23,8 @@ void write_outputs(const RunResult& r, const std::filesystem::path& out) {
   if (r.status == "unstable") {
     // An unstable history is not a result: drop any earlier run's curves so none is mistaken
     // for this run's.
-    std::filesystem::remove(out / "force.csv");
-    std::filesystem::remove(out / "energy.csv");
+    io::remove_earlier_output(out / "force.csv");
+    io::remove_earlier_output(out / "energy.csv");
   } else {
     io::CsvWriter f({"t", "fx", "fy", "fz", "f"});
     for (const ForceRow& row : r.force) {

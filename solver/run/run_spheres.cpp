@@ -2,12 +2,16 @@
 // (dem/sphere_world.hpp), through the shared step policy, time loop and summary core.
 #include "solver/run/run_spheres.hpp"
 
+#include <algorithm>
 #include <cmath>
+#include <cstdint>
+#include <limits>
 #include <numbers>
 #include <optional>
 
 #include "solver/core/error.hpp"
 #include "solver/core/format.hpp"
+#include "solver/dem/cell_grid.hpp"
 #include "solver/dem/sphere_world.hpp"
 #include "solver/dem/time_step.hpp"
 #include "solver/run/rebound.hpp"
@@ -99,9 +103,20 @@ dem::SphereWorld build_sphere_world(const scene::SceneDef& s) {
   }
 
   // No body may start inside another: the first step would fire it out with a spurious force.
+  // The candidates come from the cell grid (dem/cell_grid.hpp, O(N): the test of every pair was
+  // 5·10⁹ distance tests at 100k spheres, 71 % of a 500-step run), fixed pairs included, with a
+  // skin of 10⁻⁶ of the smallest radius so that no pair the exact test below refuses is missed to
+  // round-off; the pairs come sorted by (i, j), so the first overlap named is the one the test of
+  // every pair named.
+  double r_min = std::numeric_limits<double>::infinity();
+  for (const double r : w.radius) r_min = std::min(r_min, r);
+  const std::vector<dem::PairContact> near = dem::neighbour_pairs(
+      w.x, w.radius, std::vector<std::uint8_t>(static_cast<std::size_t>(n), 0), 1e-6 * r_min);
+  auto pair = near.begin();
   for (int i = 0; i < n; ++i) {
     const auto& bi = s.bodies[w.body[i]];
-    for (int j = i + 1; j < n; ++j) {
+    for (; pair != near.end() && pair->i == i; ++pair) {
+      const int j = pair->j;
       const double gap = (w.x.col(i) - w.x.col(j)).norm() - w.radius[i] - w.radius[j];
       if (gap < 0) {
         throw InputError(where + "bodies[" + std::to_string(w.body[i]) + "] \"" + bi.name +
@@ -226,6 +241,7 @@ RunResult run_spheres(const scene::SceneDef& s, const RunOptions& options) {
   j["profile"] = profile_json(w.profile, loop.seconds_per_tick, false);
   j["neighbour_rebuilds"] = w.rebuilds;
   j["contact_updates"] = w.contact_updates;
+  j["state_bytes"] = dem::state_bytes(w);
   j["damping"] = {{"form", s.contact.law == scene::ContactLaw::linear
                                ? "F = kn d + zeta sqrt(m* kn) d'"
                                : "F = K d^1.5 + zeta sqrt(m* K) d^0.25 d' (Tsuji form)"},

@@ -33,7 +33,7 @@ inline constexpr std::string_view kRun[] = {
     "material_law",
     // the run's length and cost
     "steps", "simulated_time", "ended_by", "cpu_seconds", "wall_seconds", "neighbour_rebuilds",
-    "contact_updates", "contact_evaluations", "contacts_touching", "surface_tets"};
+    "contact_updates", "contact_evaluations", "contacts_touching", "surface_tets", "state_bytes"};
 
 // A run's keys whose value is an array or an object: documented, not checkable as one value.
 inline constexpr std::string_view kRunStructured[] = {"final_velocity", "final_angular_velocity",

@@ -49,8 +49,15 @@ std::string frame_name(const char* stem, long frame, const char* ext) {
 }  // namespace
 
 FrameFiles::FrameFiles(const VtkOutput& out) : out_(out) {
-  // An earlier series in the folder would mix with this one's frames: it goes first.
+  // An earlier series in the folder would mix with this one's frames: it goes first. Only a
+  // folder goes: anything else of that name (a link, a device, a file) is not an earlier series.
   std::error_code ec;
+  const fs::file_status st = fs::symlink_status(out.dir, ec);
+  if (fs::exists(st) && !fs::is_directory(st)) {
+    throw InputError(out.dir.string() +
+                     ": --vtk-every: exists and is not a folder; asperity neither replaces nor "
+                     "removes it");
+  }
   fs::remove_all(out.dir, ec);
   fs::create_directories(out.dir, ec);
   if (ec || ::access(out.dir.c_str(), W_OK) != 0) {

@@ -1,7 +1,9 @@
 // Scene loading: every key validated once, here, at the edge (docs/contract.md, "Scene file").
+#include <algorithm>
 #include <cmath>
 #include <map>
 #include <set>
+#include <sstream>
 
 #include "solver/core/error.hpp"
 #include "solver/io/json_file.hpp"
@@ -25,7 +27,8 @@ Material parse_material(const JsonReader& m, const std::string& name) {
   // Thermodynamic bounds of an isotropic solid: −1 < ν < 1/2.
   out.poisson = m.in_range("poisson", -1.0, 0.5, true, true);
   out.friction = m.has("friction") ? m.in_range("friction", 0.0, 1e3, false, false) : 0.0;
-  out.restitution = m.has("restitution") ? m.in_range("restitution", 0.0, 1.0, true, false) : 1.0;
+  out.restitution =
+      m.has("restitution") ? m.in_range("restitution", kMinRestitution, 1.0, false, false) : 1.0;
   if (m.has("law")) {
     const std::string law = m.string("law");
     if (const std::optional<ElasticLaw> known = elastic_law_from_name(law)) {
@@ -52,8 +55,12 @@ Shape parse_shape(const JsonReader& s) {
   if (type == "plane") {
     s.only_keys_in(keys::kPlane);
     PlaneShape p{.point = s.vec3("point"), .normal = s.vec3("normal")};
-    if (p.normal.norm() < 1e-12) s.fail("normal", "must be a non-zero vector");
-    p.normal.normalize();
+    // Scaled by its largest component first: the norm of [1e308, 1e308, 0] overflows, and the
+    // normal became zero (a plane that overlapped everything).
+    const double largest = p.normal.cwiseAbs().maxCoeff();
+    if (!(largest > 0) || (p.normal / largest).norm() * largest < 1e-12)
+      s.fail("normal", "must be a non-zero vector (got " + io::echo(s.value().at("normal")) + ")");
+    p.normal = (p.normal / largest).normalized();
     return p;
   }
   if (type == "box") {
@@ -66,6 +73,8 @@ Shape parse_shape(const JsonReader& s) {
     s.only_keys_in(keys::kMesh);
     MeshShape m;
     m.file = s.string("file");
+    // "" joined to the scene's folder names the folder, and the message named it instead.
+    if (m.file.empty()) s.fail("file", "must name a mesh file (got \"\")");
     if (m.file.is_relative()) m.file = s.file().parent_path() / m.file;
     m.faces = s.has("faces") ? static_cast<int>(s.integer("faces", 4, 10'000'000)) : 0;
     m.scale = s.has("scale") ? s.positive("scale") : 1.0;
@@ -141,8 +150,8 @@ ContactDef parse_contact(const JsonReader& c) {
       c.fail("penalty_alpha", "only the potential law takes penalty_alpha");
     }
     if (out.penalty) c.fail("penalty_alpha", "give penalty (Pa) or penalty_alpha, not both");
-    // α = p/E (docs/physics.md, "Penalty"); the study definition's range.
-    out.penalty_alpha = c.in_range("penalty_alpha", 0, 1e6, true, false);
+    // α = p/E (docs/physics.md, "Penalty"); the study definition's range, from kMinPenaltyAlpha.
+    out.penalty_alpha = c.in_range("penalty_alpha", kMinPenaltyAlpha, 1e6, false, false);
   }
   if (c.has("max_contact_factor")) {
     if (out.law != ContactLaw::potential) {
@@ -170,7 +179,8 @@ ContactDef parse_contact(const JsonReader& c) {
     }
   }
   if (c.has("friction")) out.friction = c.in_range("friction", 0.0, 1e3, false, false);
-  if (c.has("restitution")) out.restitution = c.in_range("restitution", 0.0, 1.0, true, false);
+  if (c.has("restitution"))
+    out.restitution = c.in_range("restitution", kMinRestitution, 1.0, false, false);
   return out;
 }
 
@@ -209,6 +219,11 @@ SceneDef parse_scene(const io::Json& json, const std::filesystem::path& file,
   const JsonReader mats = r.child("materials");
   mats.require_object();
   if (mats.value().empty()) mats.fail("", "must define at least one material");
+  if (mats.value().size() > kMaxMaterials) {
+    mats.fail("", std::to_string(mats.value().size()) + " materials, more than the " +
+                      std::to_string(kMaxMaterials) +
+                      " a scene may define (every pair of them is set up before the run)");
+  }
   std::map<std::string, int> material_index;
   std::vector<std::string> law_given;  // materials that name an elastic law (checked below)
   for (const auto& [name, m] : mats.value().items()) {
@@ -297,6 +312,24 @@ SceneDef parse_scene(const io::Json& json, const std::filesystem::path& file,
                        "] is a sphere; use hertz, hertz-mindlin or linear, or mesh the sphere "
                        "(shape \"mesh\")");
       }
+    }
+  }
+
+  // A penalty in Pa is held to the α range as well: p/E of the largest Young's modulus of the
+  // moving bodies (of all, when none moves), as fdem::contact_penalty takes it.
+  if (s.contact.penalty) {
+    double young = 0;
+    for (const BodyDef& b : s.bodies)
+      if (!b.fixed) young = std::max(young, s.materials[b.material].young);
+    if (young == 0)
+      for (const BodyDef& b : s.bodies) young = std::max(young, s.materials[b.material].young);
+    const double alpha = *s.contact.penalty / young;
+    if (!(alpha >= kMinPenaltyAlpha && alpha <= 1e6)) {
+      std::ostringstream m;
+      m << *s.contact.penalty << " Pa is " << alpha
+        << " times the largest moving body's Young's modulus (" << young << " Pa); it must be "
+        << kMinPenaltyAlpha << " to 1e+06 times it";
+      r.child("contact").fail("penalty", m.str());
     }
   }
 

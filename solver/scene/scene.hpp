@@ -126,6 +126,23 @@ struct OutputDef {
   bool vtk_ascii = false;  // ASCII arrays instead of appended base64
 };
 
+// Limits a scene is held to (docs/hostile.md):
+// - Materials: the sphere contact keeps a constant table of every material pair (n², with a
+//   damping solve per distinct restitution): 2,000 materials did not finish setting up in 60 s and
+//   20,000 ended in std::bad_alloc. A scene of this suite names a dozen.
+inline constexpr std::size_t kMaxMaterials = 64;
+// - Restitution: the damping that realises e is found by integrating the clipped contact to
+//   separation (contact/restitution_damping.hpp), which takes about 1/e² steps of its clock: at
+//   1e-3 a few tenths of a second; below 1e-10 it never separated. 1e-3 is a dead stop already.
+inline constexpr double kMinRestitution = 1e-3;
+// - Penalty of the potential law (contact.penalty_alpha, and contact.penalty over the largest
+//   moving body's Young's modulus): at least this. A softer penalty lets a body sink through
+//   another faster than the runaway-penetration checks can see at the step it sets (the penalty
+//   sets a rigid body's step alone): `penalty: 1e-300` ran to status ok with the bodies passing
+//   through each other. The study runs α = 10 to 1000; tests/fdem/scenes/soft-penalty-tunnel.json
+//   (α = 2e-5) is still caught as runaway penetration (exit 3).
+inline constexpr double kMinPenaltyAlpha = 1e-6;
+
 struct SceneDef {
   std::filesystem::path file;  // where it was read from (for messages)
   std::string name;

@@ -68,7 +68,7 @@ variant huge "s['gravity'] = [1.5] * 1000000"
 bad "million-element gravity, echo cut" "huge.json: gravity: must be an array of 3 numbers \(got \[1\.5,1\.5.*\.\.\. \(" \
   run "$in/huge.json" --out "$out/r"
 variant longkey "s['x' * 1000000] = 1"
-bad "a 1 MB key" "longkey.json: x+\.\.\.: unknown key" run "$in/longkey.json" --out "$out/r"
+bad "a 1 MB key" "longkey.json: x+\.\.\. \(1000000 characters\): unknown key" run "$in/longkey.json" --out "$out/r"
 variant newlinekey "s['a\nb'] = 1"
 bad "a key with a newline stays one line" 'newlinekey.json: a\\x0ab: unknown key' run "$in/newlinekey.json" --out "$out/r"
 
@@ -300,6 +300,192 @@ if [ -f "$src/reports/study/study_summary.json" ]; then
   damaged guidelines 'printf "{\"a\": [1, 2" > guidelines.json'
   bad "report: corrupt guidelines.json" "study-guidelines/guidelines.json: invalid JSON" report "$in/study-guidelines" --out "$out/rep"
 fi
+
+# ===== Round 3 (issue 31) =====
+mesh320=$src/data/meshes/particle-seed3-320.off
+
+# --- 3. --junit and every output: a regular file or a new name, checked before any work; a device,
+# a FIFO, a folder (empty or not) or a path under a file is refused and left as it was. The device
+# is a null device of our own (never the system's /dev/null).
+mkdir -p "$in/junit-folder" "$in/junit-full/x"
+mkfifo "$in/junit-fifo"
+if mknod -m 666 "$in/junit-dev" c 1 3 2> /dev/null; then
+  bad "validate --junit a device" "--junit .*junit-dev: is a device" \
+    validate "$case_file" --out "$out/v" --junit "$in/junit-dev"
+  check "the device is still a device" test -c "$in/junit-dev"
+  bad "crosscheck --junit a device" "--junit .*junit-dev: is a device" \
+    crosscheck "$in/good.json" --out "$out/c" --junit "$in/junit-dev"
+  check "the device is still a device (crosscheck)" test -c "$in/junit-dev"
+  ln -s "$in/junit-dev" "$in/junit-devlink"
+  bad "validate --junit a link to a device" "--junit .*junit-devlink: is a link to a device" \
+    validate "$case_file" --out "$out/v" --junit "$in/junit-devlink"
+  # An output the run itself writes (run's summary.json) where a device is: refused before the run.
+  mkdir -p "$work/devout" && mknod -m 666 "$work/devout/summary.json" c 1 3
+  (cd "$cwd" && timeout "$limit" "$bin" run "$in/good.json" --out "$work/devout" -q) 2> "$work/stderr"
+  rc=$?
+  check "run --out holding a device as summary.json: exit 2 (got $rc: $(head -c 300 "$work/stderr"))" test "$rc" -eq 2
+  check "run: the device named summary.json is still a device" test -c "$work/devout/summary.json"
+  check "run: nothing else written beside it" test "$(ls -A "$work/devout")" = summary.json
+fi
+bad "validate --junit an empty folder" "--junit .*junit-folder: is a folder" \
+  validate "$case_file" --out "$out/v" --junit "$in/junit-folder"
+check "the empty folder is still there" test -d "$in/junit-folder"
+bad "validate --junit a non-empty folder" "--junit .*junit-full: is a folder" \
+  validate "$case_file" --out "$out/v" --junit "$in/junit-full"
+bad "validate --junit a FIFO" "--junit .*junit-fifo: is a FIFO" \
+  validate "$case_file" --out "$out/v" --junit "$in/junit-fifo"
+check "the FIFO is still a FIFO" test -p "$in/junit-fifo"
+bad "validate --junit under a file" "--junit .*afile/j\.xml: .*afile is not a folder" \
+  validate "$case_file" --out "$out/v" --junit "$in/afile/j.xml"
+bad "crosscheck --out a file" "--out .*afile: exists and is not a folder" \
+  crosscheck "$in/good.json" --out "$in/afile"
+
+# --- 9. --out: a component longer than a file name may be, a kernel file system
+long=$(printf 'x%.0s' $(seq 300))
+bad "--out with a 300-character component" "--out .*: a component is 300 characters, more than the 255" \
+  run "$in/good.json" --out "$out/$long"
+if [ "$(stat -f -c %T /sys 2> /dev/null)" = sysfs ]; then
+  bad "--out under /sys" "--out /sys/asperity-out: /sys is on a virtual file system" \
+    run "$in/good.json" --out /sys/asperity-out
+fi
+
+# --- 2. particle --set: each name is a plain file name (the rule of case and study names), unique;
+# every entry is checked before any particle is made
+set_variant() {  # set_variant NAME PYTHON-LIST-OF-PARTICLES
+  printf '{"format": "off", "particles": %s}' "$2" > "$in/set-$1.json"
+}
+set_variant escape '[{"name": "../../escape", "seed": 1, "faces": 20}]'
+bad "particle --set name ../../escape" "set-escape.json: particles\[0\]\.name: must not contain a path separator" \
+  particle --set "$in/set-escape.json" --out "$out/p"
+check "nothing escaped --out (particle --set)" test ! -e "$work/escape.off"
+set_variant absolute "[{\"name\": \"/tmp/asperity-hostile-escape-$$\", \"seed\": 1, \"faces\": 20}]"
+bad "particle --set absolute name" "set-absolute.json: particles\[0\]\.name: must not contain a path separator" \
+  particle --set "$in/set-absolute.json" --out "$out/p"
+check "nothing written at the absolute path (particle --set)" test ! -e "/tmp/asperity-hostile-escape-$$.off"
+set_variant twice '[{"name": "a", "seed": 1, "faces": 20}, {"name": "a", "seed": 2, "faces": 20}]'
+bad "particle --set duplicate names" "set-twice.json: particles\[1\]\.name: \"a\" is also the name of particles\[0\]" \
+  particle --set "$in/set-twice.json" --out "$out/p"
+set_variant long "[{\"name\": \"$long\", \"seed\": 1, \"faces\": 20}]"
+bad "particle --set 300-character name" "set-long.json: particles\[0\]\.name: longer than 200 characters" \
+  particle --set "$in/set-long.json" --out "$out/p"
+set_variant empty '[]'
+bad "particle --set empty list" "set-empty.json: particles: lists no particle" \
+  particle --set "$in/set-empty.json" --out "$out/p"
+set_variant late '[{"name": "good", "seed": 1, "faces": 20}, {"name": "bad", "seed": 2, "size": -1}]'
+bad "particle --set: a bad second entry, nothing made" "set-late.json: particles\[1\]: size must lie in" \
+  particle --set "$in/set-late.json" --out "$out/p"
+
+# --- 7. particle numbers beyond their usable range: exit 2 naming the option and the range
+bad "particle --size 1e300" "--size must lie in \[1e-06, 1000\] m \(got 1e\+300\)" \
+  particle --seed 1 --size 1e300 --out "$out/p.off"
+bad "particle --size 1e-300" "--size must lie in \[1e-06, 1000\] m" particle --seed 1 --size 1e-300 --out "$out/p.off"
+bad "particle --flatness 5e-324" "--flatness must lie in \[0\.05, 1\]" \
+  particle --seed 1 --flatness 5e-324 --out "$out/p.off"
+
+# --- 1. Workers: -j beyond the tasks and cores is capped (was SIGABRT, exit 134); a thread that
+# cannot start leaves the work to those that did (every thread's stack made larger than the
+# address space: no thread starts but the main one)
+mkdir -p "$work/jobs"
+if [ "$mem_kb" = unlimited ]; then cap=unlimited; else cap=$((4 * 1024 * 1024)); fi
+(cd "$cwd" && ulimit -v "$cap" && timeout 120 "$bin" validate "$case_file" --out "$work/jobs/a" -q -j 100000) \
+  2> "$work/stderr"
+rc=$?
+check "validate -j 100000 under a 4 GiB cap: exit 0 (got $rc: $(head -c 300 "$work/stderr"))" test "$rc" -eq 0
+if [ "$mem_kb" != unlimited ]; then
+  (cd "$cwd" && ulimit -v $((2 * 1024 * 1024)) && ulimit -s $((3 * 1024 * 1024)) &&
+    timeout 120 "$bin" validate "$src/validation/cases/hertz" --out "$work/jobs/b" -q -j 2) 2> "$work/stderr"
+  rc=$?
+  check "validate when no worker thread can start: exit 0 (got $rc: $(head -c 300 "$work/stderr"))" test "$rc" -eq 0
+fi
+
+# --- 8 / 11. Study: what can be known from the particles is refused before the lock and any mesh
+printf '{"particles": {"meshes": [{"file": "%s"}]}, "resolutions": [100, 400], "models": ["fem"]}' \
+  "$mesh320" > "$in/above.json"
+bad "study resolution above the particle's triangles" \
+  "above.json: resolutions\[1\]: 400 triangles is more than particle \"particle-seed3-320\" has \(320\)" \
+  study "$in/above.json" --out "$out/s"
+printf '{"particles": {"meshes": [{"file": "%s"}]}, "resolutions": [100, 320], "models": ["fem"], "refinement": {"sizes": [0.001], "growth": 0}}' \
+  "$mesh320" > "$in/finest.json"
+bad "study refinement beyond the tetrahedron limit" \
+  "finest.json: refinement\.sizes\[0\]: particle \"particle-seed3-320\": .* tetrahedra \(limit 20 M\)" \
+  study "$in/finest.json" --out "$out/s"
+# Long set-up says so at once: a study each phase's count, mesh the estimate before TetGen starts.
+printf '{"particles": {"meshes": [{"file": "%s"}]}, "resolutions": [100, 320], "models": ["fem"], "refinement": {"sizes": [0.001]}}' \
+  "$mesh320" > "$in/slow.json"
+"$bin" study "$in/slow.json" --out "$work/slow-study" -j 1 2> "$work/slow-study.err" &
+pid=$!
+"$bin" mesh "$mesh320" --element-size 0.002 --out "$work/slow-mesh" 2> "$work/slow-mesh.err" &
+pid2=$!
+sleep 4
+kill -s INT "$pid" "$pid2"
+wait "$pid" "$pid2"
+sleep 1
+check "an interrupted mesh leaves no TetGen process behind" \
+  test -z "$(pgrep -f -- "--out $work/slow-mesh")"
+check "a study says its meshes at once ($(head -c 200 "$work/slow-study.err"))" grep -q '^meshes: 2 to do' "$work/slow-study.err"
+check "mesh says its estimate before TetGen ($(head -c 200 "$work/slow-mesh.err"))" \
+  grep -qE 'particle-seed3-320\.off: tetrahedralizing, about [0-9.e+]+ M tetrahedra estimated \(TetGen stops at 300 s\)' "$work/slow-mesh.err"
+
+# --- 4 / 5. Scene bounds: materials (every pair is set up before the run) and restitution (its
+# damping solve never separated below 1e-10)
+variant materials "s['materials'].update({'m%d' % i: {'density': 1, 'young': 1, 'poisson': 0} for i in range(2000)})"
+bad "2000 materials" "materials.json: materials: 2001 materials, more than the 64" run "$in/materials.json" --out "$out/r"
+variant tiny_e "s['materials'][list(s['materials'])[0]]['restitution'] = 1e-10"
+bad "restitution 1e-10" "tiny_e.json: materials\.[a-z]+\.restitution: must lie in \[0\.001, 1\]" \
+  run "$in/tiny_e.json" --out "$out/r"
+bad "restitution 1e-10, stability" "tiny_e.json: materials\.[a-z]+\.restitution: must lie in \[0\.001, 1\]" \
+  stability "$in/tiny_e.json" --out "$out/r"
+
+# --- 12. A penalty so soft that bodies pass through each other unseen ran to status ok: bounded
+# as α = p/E from 1e-6 (the soft-penalty tunnel scene, α = 2e-5, stays a runaway: exit 3)
+for p in 1e-300 1e4; do
+  poly_variant "pen$p" "s['contact'] = {'law': 'potential', 'penalty': $p}"
+  bad "contact.penalty $p" "pen$p.json: contact\.penalty: .* Pa is .* times the largest moving body's Young's modulus .*must be 1e-06 to 1e\+06 times it" \
+    run "$in/pen$p.json" --out "$out/r"
+done
+poly_variant alpha0 "s['contact'] = {'law': 'potential', 'penalty_alpha': 1e-300}"
+bad "contact.penalty_alpha 1e-300" "alpha0.json: contact\.penalty_alpha: must lie in \[1e-06, 1e\+06\]" \
+  run "$in/alpha0.json" --out "$out/r"
+
+# --- 6. A 60 MB unknown key is refused within the limit (the suggestion was 49 s)
+/usr/bin/python3 -c "
+import sys
+open(sys.argv[1], 'w').write('{\"' + 'k' * 60_000_000 + '\": 1}')" "$in/key60.json"
+bad "a 60 MB key" "key60.json: k+\.\.\. \(60000000 characters\): unknown key" run "$in/key60.json" --out "$out/r"
+
+# --- 9. Exit codes
+case_variant negtol "c['expected']['peak_force']['rel_tol'] = -0.1"
+bad "negative rel_tol" "negtol.json: expected\.peak_force\.rel_tol: must lie in \[0, " validate "$in/cases/negtol.json" --out "$out/v"
+rm -f "$in/cases/"*
+bad "crosscheck --max-rel-diff nan" "--max-rel-diff: must be a finite number > 0" \
+  crosscheck "$in/good.json" --out "$out/c" --max-rel-diff nan
+for f in nan 0 1e300 -1; do
+  bad "stability --reference-factor $f" "--reference-factor: must be a finite number > 0 and <= 1" \
+    stability "$in/good.json" --out "$out/r" --reference-factor "$f"
+done
+
+# --- 10. Messages that say what is wrong
+bad "mesh --element-size 5e-324" "--element-size: 4\.94066e-324 m would make more than 1e308 tetrahedra \(limit 20 M\)" \
+  mesh "$mesh320" --faces 100 --element-size 5e-324 --out "$out/m"
+bad "mesh --element-size -1e308, short" "--element-size: -1e\+308 is not a positive length" \
+  mesh "$mesh320" --faces 100 --element-size -1e308 --out "$out/m"
+printf 'OFF\n4 4 0\n0 0 0\n1e200 0 0\n0 1e200 0\n0 0 1e200\n3 0 2 1\n3 0 1 3\n3 0 3 2\n3 1 2 3\n' > "$in/far.off"
+bad "mesh with huge coordinates" "far\.off: 3 vertices farther than 1e\+06 m from the origin" \
+  mesh "$in/far.off" --out "$out/m"
+printf 'v 0 0 0\nv 1 0 0\nv 0 1 0\nv 0 0 1\nf 1 3 2\nf 1 2 4\nf 1 4 3\nf 2 3 99999999999999999999\n' > "$in/index.obj"
+bad "OBJ with a huge index" "index\.obj: line 8: face vertex index \"99999999999999999999\" is out of range \(the file has 4 vertices\)" \
+  mesh "$in/index.obj" --out "$out/m"
+poly_variant nofile "s['bodies'][0]['shape']['file'] = ''"
+bad "mesh file \"\"" "nofile.json: bodies\[0\]\.shape\.file: must name a mesh file" run "$in/nofile.json" --out "$out/r"
+variant nulkey "s['a\u0000b'] = 1"
+bad "a NUL in a key" 'nulkey.json: a\\x00b: unknown key' run "$in/nulkey.json" --out "$out/r"
+# A scene name is echoed escaped and cut in the success line (a terminal escape, a 1 MB name).
+variant loudname "s['name'] = '\u001b[31mred' + 'x' * 1000000"
+(cd "$cwd" && timeout "$limit" "$bin" run "$in/loudname.json" --out "$work/loud") > /dev/null 2> "$work/stderr"
+rc=$?
+check "a loud scene name runs (exit $rc)" test "$rc" -eq 0
+check "its name is escaped in the success line" grep -q '^\\x1b\[31mredx*\.\.\. (1000008 characters): ok' "$work/stderr"
+check "the success line is short ($(wc -c < "$work/stderr") bytes)" test "$(wc -c < "$work/stderr")" -lt 700
 
 # --- 9. Leftovers: a failed write leaves no *.partial-PID; an interrupted run leaves nothing
 # that looks complete (an earlier run's outputs in the folder go before the run starts).

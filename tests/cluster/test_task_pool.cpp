@@ -7,6 +7,8 @@
 #include <thread>
 #include <vector>
 
+#include <pthread.h>
+
 #include <gtest/gtest.h>
 
 #include "cluster/task_pool.hpp"
@@ -61,6 +63,7 @@ TEST(TaskPool, OneWorkerTakesTheTasksInTheGivenOrder) {
 // busy time in 8 units of wall: no idle time); the long task last would leave one worker idle
 // for 8 units of 16 (idle fraction 1/3).
 TEST(TaskPool, IdleFractionMeasuresTheEnd) {
+  if (std::thread::hardware_concurrency() < 2) GTEST_SKIP() << "needs 2 cores for 2 workers";
   World world;
   const auto unit = std::chrono::milliseconds(25);
   const auto run = [&](int k) {
@@ -75,6 +78,43 @@ TEST(TaskPool, IdleFractionMeasuresTheEnd) {
   EXPECT_LT(first.idle_fraction, 0.1);
   EXPECT_NEAR(last.idle_fraction, 1.0 / 3.0, 0.1);
   EXPECT_NEAR(last.drain_seconds, 0.2, 0.05);  // the long task ran alone for its last 8 units
+}
+
+// Workers are capped at the tasks and the cores (issue 31, class 1: `-j 100000` aborted).
+TEST(TaskPool, WorkersAreCappedAtTasksAndCores) {
+  const int cores = std::max(1, static_cast<int>(std::thread::hardware_concurrency()));
+  EXPECT_EQ(worker_count(100000, 1000000), cores);
+  EXPECT_EQ(worker_count(100000, 1), 1);
+  EXPECT_EQ(worker_count(0, 5), 1);
+  EXPECT_EQ(worker_count(-3, 5), 1);
+  EXPECT_EQ(worker_count(2, 0), 1);
+}
+
+// A thread that cannot start ends the starting, not the run: with every new thread's stack set
+// beyond any address space, the caller's thread alone does every task once (was std::terminate,
+// SIGABRT).
+TEST(TaskPool, ThreadsThatCannotStartLeaveTheWorkToTheOthers) {
+  pthread_attr_t saved;
+  ASSERT_EQ(pthread_getattr_default_np(&saved), 0);
+  pthread_attr_t huge;
+  pthread_attr_init(&huge);
+  ASSERT_EQ(pthread_attr_setstacksize(&huge, std::size_t{1} << 46), 0);  // 64 TiB
+  ASSERT_EQ(pthread_setattr_default_np(&huge), 0);
+  World world;
+  std::vector<std::atomic<int>> runs(9);
+  PoolStats stats;
+  const std::vector<TaskReport> reports = run_tasks(
+      world, 9, {0, 1, 2, 3, 4, 5, 6, 7, 8}, 4,
+      [&](int k) {
+        ++runs[static_cast<std::size_t>(k)];
+        return TaskReport{};
+      },
+      nullptr, &stats);
+  pthread_setattr_default_np(&saved);
+  pthread_attr_destroy(&huge);
+  pthread_attr_destroy(&saved);
+  for (int k = 0; k < 9; ++k) EXPECT_EQ(runs[static_cast<std::size_t>(k)], 1) << k;
+  EXPECT_EQ(stats.workers, 1);
 }
 
 }  // namespace

@@ -24,12 +24,14 @@ run_one() {  # run_one TARGET CORPUS-NAME
   [ "$rc" -eq 0 ] || { tail -30 "$findings/$t.log"; return 1; }
 }
 status=0
-pairs=("fuzz_scene scene" "fuzz_study study" "fuzz_mesh_stl stl" "fuzz_mesh_obj obj"
-       "fuzz_mesh_ply ply" "fuzz_mesh_off off")
+pairs=("fuzz_scene scene" "fuzz_study study" "fuzz_case case" "fuzz_mesh_stl stl"
+       "fuzz_mesh_obj obj" "fuzz_mesh_ply ply" "fuzz_mesh_off off")
 for ((i = 0; i < ${#pairs[@]}; i += 2)); do
   run_one ${pairs[i]} & a=$!
-  run_one ${pairs[i + 1]} & b=$!
+  if ((i + 1 < ${#pairs[@]})); then
+    run_one ${pairs[i + 1]} & b=$!
+    wait $b || status=1
+  fi
   wait $a || status=1
-  wait $b || status=1
 done
 exit $status

@@ -75,7 +75,33 @@ TEST(RandomParticle, RejectsOutOfRangeParameters) {
   EXPECT_THROW(random_particle({.elongation = 1.5}), InputError);
   EXPECT_THROW(random_particle({.size = -1}), InputError);
   EXPECT_THROW(random_particle({.roughness = 2}), InputError);
-  EXPECT_EQ(particle_def_problem({.flatness = 0}), "flatness must lie in (0, 1] (got 0)");
+  EXPECT_EQ(particle_def_problem({.flatness = 0}), "flatness must lie in [0.05, 1] (got 0)");
+  // Beyond the usable range (issue 31, class 7): a cube of 1e300 overflows, 5e-324 is denormal.
+  EXPECT_EQ(particle_def_problem({.size = 1e300}), "size must lie in [1e-06, 1000] m (got 1e+300)");
+  EXPECT_EQ(particle_def_problem({.size = 1e-300}),
+            "size must lie in [1e-06, 1000] m (got 1e-300)");
+  EXPECT_NE(particle_def_problem({.flatness = 5e-324}), "");
+}
+
+// Every corner of the usable range gives a valid closed solid of the asked size: the range the
+// checks above allow is one the generator honours (random_particle.hpp's construction).
+TEST(RandomParticle, TheUsableRangeGivesValidSolids) {
+  for (const double size : {kParticleSizeMin, kParticleSizeMax}) {
+    for (const std::uint64_t seed : {1u, 2u, 3u}) {
+      const ParticleDef d{.seed = seed,
+                          .size = size,
+                          .elongation = kParticleAxisRatioMin,
+                          .flatness = kParticleAxisRatioMin,
+                          .angularity = 1,
+                          .roughness = 1,
+                          .faces = 5120};
+      const SurfaceMesh m = random_particle(d);
+      const MeshCheck check = check_mesh(m, true);
+      EXPECT_TRUE(check.valid()) << "size " << size << " seed " << seed;
+      // Equivalent-sphere diameter exact (the construction rescales to it): 1e-9 relative.
+      EXPECT_NEAR(std::cbrt(6 * check.volume / std::numbers::pi) / size, 1.0, 1e-9);
+    }
+  }
 }
 
 }  // namespace

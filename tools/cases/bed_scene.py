@@ -3,6 +3,9 @@
 and step, two spheres and 10,000.
 
     bed_scene.py DIR [--bed-steps N] [--pair-steps N]   writes DIR/pair.json and DIR/bed-10k.json
+    bed_scene.py DIR --bed-size NX NY NZ [--bed-steps N]   writes DIR/bed-Nk.json alone, the same
+        bed with NX x NY x NZ spheres (the set-up and memory scaling: 50 40 50 is 100k spheres,
+        100 100 100 is 1M)
 
 Material and law: glass (E 63 GPa, nu 0.23, rho 2500 kg/m^3, mu 0.3, e 0.8), radius 1 mm,
 Hertz-Mindlin, as benchmarks/dem_bench.cpp. Step: DT = 2.5e-7 s in both, below the step
@@ -48,13 +51,14 @@ def pair(steps):
     return scene("pair", bodies, steps, "a", max(1, steps // 100))
 
 
-def bed(steps):
+def bed(steps, nx=NX, ny=NY, nz=NZ):
     spacing = 2 * RADIUS * (1 + GAP)
     bodies = [sphere(f"s{x}_{y}_{z}", (x * spacing, y * spacing, RADIUS * (1 + GAP) + z * spacing))
-              for z in range(NZ) for y in range(NY) for x in range(NX)]
+              for z in range(nz) for y in range(ny) for x in range(nx)]
     bodies.append({"name": "floor", "material": "glass",
                    "shape": {"type": "plane", "point": [0, 0, 0], "normal": [0, 0, 1]}})
-    return scene("bed-10k", bodies, steps, "floor", max(1, steps // 10), gravity=(0, 0, -9.81))
+    return scene(f"bed-{nx * ny * nz // 1000}k", bodies, steps, "floor", max(1, steps // 10),
+                 gravity=(0, 0, -9.81))
 
 
 def write(out, bed_steps=500, pair_steps=1_000_000):
@@ -77,6 +81,14 @@ def main(argv):
     for k in opts:
         if k in argv:
             opts[k] = int(argv[argv.index(k) + 1])
+    if "--bed-size" in argv:
+        i = argv.index("--bed-size")
+        s = bed(opts["--bed-steps"], *(int(v) for v in argv[i + 1:i + 4]))
+        p = pathlib.Path(argv[0]) / f"{s['name']}.json"
+        p.parent.mkdir(parents=True, exist_ok=True)
+        p.write_text(json.dumps(s) + "\n")
+        print(p)
+        return 0
     for p in write(argv[0], opts["--bed-steps"], opts["--pair-steps"]):
         print(p)
     return 0
