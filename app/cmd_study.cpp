@@ -25,7 +25,8 @@ struct StudyArgs {
   bool quiet = false, allow_failed = false, collect = false;
 };
 
-// `--collect`: the tables from the case folders as they are (after the shards of a job array).
+// `--collect`: the tables from the case folders (after the shards of a job array). Refused while a
+// case has neither finished nor failed: tables written then would silently leave it out.
 int collect(const study::StudyDef& def, const StudyArgs& args) {
   if (!std::filesystem::exists(args.out / "study.json")) {
     throw InputError(args.out.string() +
@@ -35,6 +36,14 @@ int collect(const study::StudyDef& def, const StudyArgs& args) {
   std::optional<study::FolderLock> lock;
   lock.emplace(args.out, study::Shard{});
   study::adopt_folder(def, args.out);
+  if (const int unfinished = study::unfinished_cases(def, args.out); unfinished > 0) {
+    std::fprintf(stderr,
+                 "study %s: %d of %zu cases in %s have not run (a shard not run yet, cancelled or "
+                 "out of time: run it again, then --collect); no table written\n",
+                 def.name.c_str(), unfinished, study::plan_cases(def).size(),
+                 args.out.string().c_str());
+    return kExitFailure;
+  }
   const study::StudyTables tables = study::write_tables(def, args.out, study::StudyOutcome{});
   if (!args.quiet) {
     std::fprintf(stderr, "study %s: %d cases collected (%d done, %d failed) -> %s\n",

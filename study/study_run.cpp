@@ -333,6 +333,19 @@ std::string CaseKey::dir_name() const {
          placement_name(placement);
 }
 
+fs::path case_dir(const fs::path& out, const CaseKey& key) {
+  return out / "cases" / key.particle / key.dir_name();
+}
+
+int unfinished_cases(const StudyDef& def, const fs::path& out) {
+  int n = 0;
+  for (const CaseKey& k : plan_cases(def)) {
+    const fs::path dir = case_dir(out, k);
+    n += !fs::exists(dir / "case.json") && !fs::exists(dir / "failed.json");
+  }
+  return n;
+}
+
 double hertz_contact_time(double radius, double mass, double effective_young, double speed) {
   return 2.868 * std::pow(mass * mass / (radius * effective_young * effective_young * speed), 0.2);
 }
@@ -659,7 +672,7 @@ std::map<std::string, ParticlePlan> plan_particles(const StudyDef& def, const fs
 // an earlier run finished the same scene; failed.json when it fails.
 cluster::TaskReport run_case(const StudyDef& def, const fs::path& out, const ParticlePlan& pp,
                              const CaseKey& c) {
-  const fs::path dir = out / "cases" / c.particle / c.dir_name();
+  const fs::path dir = case_dir(out, c);
   const std::string label = c.particle + " " + c.dir_name();
   try {
     fs::create_directories(dir);

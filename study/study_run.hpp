@@ -89,6 +89,13 @@ struct CaseKey {
 // Every case of the study, in a fixed order (particle, model, resolution, placement, level).
 std::vector<CaseKey> plan_cases(const StudyDef& def);
 
+// The folder of a case's files: OUT/cases/PARTICLE/CASE.
+std::filesystem::path case_dir(const std::filesystem::path& out, const CaseKey& key);
+
+// The cases of OUT that neither finished (case.json) nor failed (failed.json): those of a shard
+// that has not run, was cancelled or ran out of time.
+int unfinished_cases(const StudyDef& def, const std::filesystem::path& out);
+
 // Runs every case of the shard not already done, on every rank of `options.world` with
 // `jobs` threads each, the most expensive first, handed out one at a time (docs/cluster.md).
 // Throws InputError for a particle that cannot be read, a folder of another study or a folder in

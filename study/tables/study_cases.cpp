@@ -223,7 +223,7 @@ StudyCases load_study_cases(const StudyDef& def, const fs::path& dir) {
   for (const CaseKey& k : plan_cases(def)) {
     CaseData c;
     c.key = k;
-    c.dir = dir / "cases" / k.particle / k.dir_name();
+    c.dir = case_dir(dir, k);
     if (fs::exists(c.dir / "case.json")) {
       const io::Json rec = io::read_json_file(c.dir / "case.json");
       c.summary = OJson::parse(io::read_json_file(c.dir / "summary.json").dump());

@@ -2,13 +2,10 @@
 """The study over MPI ranks and shards gives the same results as one process (issue 16).
 
 Usage: check_mpi.py ASPERITY MPIRUN SMOKE_STUDY.json CASES_DIR WORK_DIR. Exit 0 when every check passes;
-each failure is printed. Same results means: every case's summary.json and the tables cases.csv,
-classification.csv and particle_classes.csv equal, byte for byte, once the timing fields are
-dropped (CPU and wall seconds, the profile): they are measurements of the machine, not results.
+each failure is printed. Same results: study_results.py.
 """
 import csv
 import glob
-import io
 import json
 import os
 import shutil
@@ -16,6 +13,8 @@ import signal
 import subprocess
 import sys
 import time
+
+from study_results import case_count, differing, results, timing
 
 binary, mpirun, study_file, cases_dir, work = sys.argv[1:6]
 # --oversubscribe: more ranks than this machine's cores; --allow-run-as-root: CI runs as root.
@@ -36,51 +35,16 @@ def study(out, *extra, ranks=None):
     return subprocess.run(cmd, capture_output=True, text=True, timeout=300)
 
 
-def timing(key):
-    return "cpu" in key or "wall" in key or key == "profile"
-
-
-def results(folder):
-    """Every result of a study folder with the timing fields dropped: {name: text}."""
-    out = {}
-    for table in ["cases.csv", "classification.csv", "particle_classes.csv"]:
-        path = os.path.join(folder, table)
-        if not os.path.exists(path):
-            out[table] = None
-            continue
-        with open(path, newline="") as f:
-            rows = list(csv.reader(f))
-        keep = [i for i, name in enumerate(rows[0]) if not timing(name)]
-        buf = io.StringIO()
-        csv.writer(buf).writerows([[r[i] for i in keep] for r in rows])
-        out[table] = buf.getvalue()
-    for path in sorted(glob.glob(os.path.join(folder, "cases", "*", "*", "summary.json"))):
-        with open(path) as f:
-            summary = json.load(f)
-        for key in [k for k in summary if timing(k)]:
-            del summary[key]
-        out[os.path.relpath(path, folder)] = json.dumps(summary, sort_keys=True)
-    return out
-
-
 def same(name, a, b):
-    differ = sorted(k for k in set(a) | set(b) if a.get(k) != b.get(k))
+    differ = differing(a, b)
     check(name, not differ and len(a) > 3, f"differ: {differ[:5]}")
 
 
 shutil.rmtree(work, ignore_errors=True)
 os.makedirs(work)
 with open(study_file) as f:
-    n_cases = 0
     spec = json.load(f)
-    # the spheres ("sphere", "sphere-local") have no resolution: one case per particle and placement
-    meshed = [m for m in spec["models"] if m not in ("sphere", "sphere-local")]
-    n_cases = spec["particles"]["count"] * (len(spec["resolutions"]) * len(meshed) + len(spec["models"]) -
-                                            len(meshed)) * len(spec["placements"])
-    # fem's refined element sizes (issue 12): a case per size, refined resolution and placement
-    ref = spec.get("refinement", {})
-    n_cases += spec["particles"]["count"] * len(ref.get("sizes", [])) * \
-        len(ref.get("resolutions", spec["resolutions"])) * len(ref.get("placements", spec["placements"]))
+n_cases = case_count(spec)
 
 # 1. The reference: one process, two threads.
 one = os.path.join(work, "one")
@@ -147,6 +111,10 @@ r = study(out, "--shard", "1/2", "-j", "2")
 check("shard 1/2 exits 0", r.returncode == 0, r.stderr)
 first = set(glob.glob(os.path.join(out, "cases", "*", "*", "case.json")))
 check("shard 1/2 writes no tables", not os.path.exists(os.path.join(out, "cases.csv")))
+r = subprocess.run([binary, "study", study_file, "--out", out, "--collect", "-q"], capture_output=True, text=True)
+check("--collect with shard 2/2 not run: exit 1, saying how many cases have not run, no table",
+      r.returncode == 1 and f"{n_cases // 2} of {n_cases} cases" in r.stderr and
+      not os.path.exists(os.path.join(out, "cases.csv")), (r.returncode, r.stderr))
 r = study(out, "--shard", "2/2", "-j", "2")
 check("shard 2/2 exits 0", r.returncode == 0, r.stderr)
 both = set(glob.glob(os.path.join(out, "cases", "*", "*", "case.json")))
