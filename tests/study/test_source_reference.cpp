@@ -1,0 +1,159 @@
+// The source reference's gate (issue 28): on particles the reference was not tuned on, a
+// generated one of another seed and a scanned stone, the refined levels on the contact-local
+// surface converge (the successive changes of the peak force fall at an observed order between
+// 1 and 4) and doubling the contact patch moves the converged peak force by less than 0.5 %.
+#include <gtest/gtest.h>
+
+#include <cstdio>
+#include <filesystem>
+#include <fstream>
+#include <sstream>
+#include <string>
+#include <vector>
+
+#include "contact/hertz_impact.hpp"
+#include "geometry/contact_local_surface.hpp"
+#include "geometry/mass_properties.hpp"
+#include "geometry/random_particle.hpp"
+#include "geometry/repair_mesh.hpp"
+#include "geometry/write_mesh.hpp"
+#include "run/run_scene.hpp"
+#include "scene/scene.hpp"
+#include "study/source_reference.hpp"
+#include "study/tables/study_cases.hpp"
+
+namespace asperity::study {
+namespace {
+
+namespace fs = std::filesystem;
+
+// The study's impact (data/study/default.json): granite-like rock at 2 m/s onto a rigid block,
+// penalty α = 100 with the refined cases' contact factor 2, graded at 0.15 beyond 2 h.
+const Material kRock{.name = "rock", .density = 2650, .young = 50e9, .poisson = 0.25};
+constexpr double kSpeed = 2.0, kGap = 1e-4;
+
+struct Level {
+  double peak = 0, impulse = 0, duration = 0, cpu = 0;
+};
+
+// One refined level: the contact-local surface `file`, h at the strike point.
+Level run_level(const fs::path& dir, const std::string& name, const fs::path& file,
+                const SourceReferencePlan& plan, const SurfaceMesh& surface, double h) {
+  const double centroid_z = geometry::mass_properties(surface).centroid.z();
+  const double contact_time =
+      contact::hertz_contact_time(plan.mass, plan.equivalent_radius,
+                                  kRock.young / (2 * (1 - kRock.poisson * kRock.poisson)), kSpeed);
+  const Vec3& f = plan.strike_point;
+  std::ostringstream s;
+  s.precision(17);
+  s << R"({"name": ")" << name << R"(", "gravity": [0, 0, -9.81], "duration": )"
+    << kGap / kSpeed + 1.5 * contact_time << R"(, "dt": "auto",
+  "materials": {"rock": {"density": 2650, "young": 5e10, "poisson": 0.25, "friction": 0}},
+  "bodies": [
+    {"name": "particle", "material": "rock", "model": "fem",
+     "shape": {"type": "mesh", "file": ")"
+    << file.string() << R"(", "element_size": )" << h << R"(, "element_size_focus": [)" << f.x()
+    << ", " << f.y() << ", " << f.z() << R"(], "element_size_focus_radius": )" << 2 * h
+    << R"(, "element_size_growth": 0.15},
+     "position": [0, 0, )"
+    << kGap + centroid_z - f.z() << R"(], "velocity": [0, 0, )" << -kSpeed << R"(]},
+    {"name": "block", "material": "rock", "shape": {"type": "box", "min": [-1, -1, -1], "max": [1, 1, 0]}}],
+  "contact": {"law": "potential", "penalty_alpha": 100, "max_contact_factor": 2},
+  "record": {"force_on": "particle", "every": 1000, "end_after_separation": )"
+    << 0.25 * contact_time << "}}";
+  const fs::path scene = dir / (name + ".json");
+  std::ofstream(scene) << s.str();
+  const run::RunResult r = run::run_scene(scene::load_scene(scene), {.keep_rows = false});
+  EXPECT_EQ(r.status, "ok") << name << ": " << r.message;
+  return {.peak = r.summary["peak_force"].get<double>(),
+          .impulse = r.summary["impulse"].get<double>(),
+          .duration = r.summary["contact_duration"].get<double>(),
+          .cpu = r.summary["cpu_seconds"].get<double>()};
+}
+
+struct Sequence {
+  std::vector<Level> levels;
+  tables::Extrapolation peak, impulse, duration;
+};
+
+Sequence run_sequence(const std::string& name, const SurfaceMesh& source,
+                      const SourceReferencePlan& plan, const SourceReferenceOptions& options,
+                      double patch) {
+  const fs::path dir = fs::temp_directory_path() / "asperity_source_reference";
+  fs::create_directories(dir);
+  const geometry::ContactLocalSurface local =
+      geometry::contact_local_surface(source, {.centre = plan.strike_point,
+                                               .radius = patch * plan.equivalent_radius,
+                                               .far_faces = options.far_faces});
+  const fs::path file = dir / (name + ".off");
+  geometry::write_surface_mesh(file, local.surface);
+  Sequence seq;
+  std::vector<double> sizes, peak, impulse, duration;
+  for (std::size_t k = 0; k < plan.sizes.size(); ++k) {
+    const Level l =
+        run_level(dir, name + "-L" + std::to_string(k), file, plan, local.surface, plan.sizes[k]);
+    std::printf(
+        "%s: h = %.4g R (%zu/%zu), peak %.8g N, impulse %.8g N s, duration %.8g s, "
+        "%.1f s CPU\n",
+        name.c_str(), plan.sizes[k] / plan.equivalent_radius, k + 1, plan.sizes.size(), l.peak,
+        l.impulse, l.duration, l.cpu);
+    seq.levels.push_back(l);
+    sizes.push_back(plan.sizes[k] / plan.equivalent_radius);
+    peak.push_back(l.peak);
+    impulse.push_back(l.impulse);
+    duration.push_back(l.duration);
+  }
+  seq.peak = tables::richardson(sizes, peak);
+  seq.impulse = tables::richardson(sizes, impulse);
+  seq.duration = tables::richardson(sizes, duration);
+  std::printf("%s: limit %.8g N +- %.3g %%, order %.3g (%s)\n", name.c_str(), seq.peak.limit,
+              100 * seq.peak.error, seq.peak.order, seq.peak.observed ? "observed" : "assumed");
+  return seq;
+}
+
+void check_reference(const std::string& name, const SurfaceMesh& source) {
+  const SourceReferenceOptions options{};
+  const SourceReferencePlan plan = plan_source_reference(source, kRock, kSpeed, options);
+  std::printf(
+      "%s: %ld source triangles, R = %.4g m, local radius %.4g m, Hertz a %.4g m "
+      "(%.3g R), finest h %.4g R\n",
+      name.c_str(), static_cast<long>(source.faces.cols()), plan.equivalent_radius,
+      plan.local_radius, plan.contact_radius, plan.contact_radius / plan.equivalent_radius,
+      plan.sizes.back() / plan.equivalent_radius);
+  const Sequence near = run_sequence(name + "-patch", source, plan, options, options.patch);
+  const Sequence wide = run_sequence(name + "-patch2", source, plan, options, 2 * options.patch);
+  // The issue's convergence statement: the successive changes fall at an observed order between
+  // 1 and 4 (graded refinement of a Hertz contact converges at 1.2-2.7 in peak force on the
+  // sphere, reports/fem/hertz_convergence.md; outside 1-4 the levels are not asymptotic).
+  EXPECT_TRUE(near.peak.observed) << name << ": the peak force's changes do not fall";
+  EXPECT_GE(near.peak.order, 1.0) << name;
+  EXPECT_LE(near.peak.order, 4.0) << name;
+  // The patch-size check: the far surface's simplification moves the converged peak by less
+  // than 0.5 % (the issue's bound: a share of the 1 % the reference's uncertainty may have).
+  EXPECT_LT(std::abs(wide.peak.limit / near.peak.limit - 1), 0.005) << name;
+}
+
+// A generated particle of a seed outside data/particles/set.json (its seeds are 1000-1049), with
+// the set's ballast-like shape numbers and its 20 480 source triangles.
+TEST(SourceReference, GeneratedParticleConverges) {
+  const SurfaceMesh source = geometry::random_particle({.seed = 7321,
+                                                        .size = 0.05,
+                                                        .elongation = 0.8,
+                                                        .flatness = 0.8,
+                                                        .angularity = 0.8,
+                                                        .roughness = 0.15,
+                                                        .faces = 20480});
+  check_reference("generated-7321", source);
+}
+
+// A scanned stone (Settimi et al. 2022, ../shared/data/scans: never committed).
+TEST(SourceReference, ScannedStoneConverges) {
+  const fs::path scan = fs::path(ASPERITY_SCANS_DIR) / "low_res_E34.ply";
+  if (!fs::exists(scan)) GTEST_SKIP() << scan << " is absent (the scans are not committed)";
+  geometry::MeshLog log;
+  const SurfaceMesh source = geometry::load_surface_mesh(scan, {.scale = 1e-3}, log);
+  check_reference("scan-E34", source);
+}
+
+}  // namespace
+}  // namespace asperity::study
