@@ -32,4 +32,33 @@ SourceReferencePlan plan_source_reference(const SurfaceMesh& source, const Mater
   return p;
 }
 
+namespace {
+
+SourceMetric metric(const std::vector<double>& sizes, const std::vector<SourceLevel>& patch,
+                    const std::vector<SourceLevel>& doubled, double SourceLevel::*value) {
+  const auto limit = [&](const std::vector<SourceLevel>& levels) {
+    std::vector<double> v;
+    for (const SourceLevel& l : levels) v.push_back(l.*value);
+    return tables::richardson(sizes, v);
+  };
+  SourceMetric m;
+  m.limit = limit(patch);
+  m.uncertainty = m.limit.error;
+  if (!doubled.empty()) {
+    m.patch_change = limit(doubled).limit / m.limit.limit - 1;
+    m.uncertainty = std::hypot(m.limit.error, m.patch_change);
+  }
+  return m;
+}
+
+}  // namespace
+
+SourceReference source_reference(const std::vector<double>& sizes,
+                                 const std::vector<SourceLevel>& patch,
+                                 const std::vector<SourceLevel>& doubled) {
+  return {.peak_force = metric(sizes, patch, doubled, &SourceLevel::peak_force),
+          .impulse = metric(sizes, patch, doubled, &SourceLevel::impulse),
+          .contact_duration = metric(sizes, patch, doubled, &SourceLevel::contact_duration)};
+}
+
 }  // namespace asperity::study

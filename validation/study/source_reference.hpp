@@ -9,6 +9,7 @@
 #include "core/material.hpp"
 #include "core/mesh.hpp"
 #include "core/vec.hpp"
+#include "study/tables/study_cases.hpp"
 
 namespace asperity::study {
 
@@ -41,5 +42,28 @@ struct SourceReferencePlan {
 // a / elements_across and each coarser level twice the next.
 SourceReferencePlan plan_source_reference(const SurfaceMesh& source, const Material& particle,
                                           double speed, const SourceReferenceOptions& options);
+
+// One refined level's measures.
+struct SourceLevel {
+  double peak_force = 0, impulse = 0, contact_duration = 0;  // N, N s, s
+};
+
+// The reference of one metric: the Richardson limit of the levels on the patch (with its
+// estimated error, relative, and the order used, observed or assumed: tables::richardson), the
+// relative change of the limit when the patch is doubled (NaN when not run), and the reference's
+// uncertainty, the two in quadrature (the patch term left out when not run).
+struct SourceMetric {
+  tables::Extrapolation limit;
+  double patch_change = std::nan("");
+  double uncertainty = std::nan("");
+};
+struct SourceReference {
+  SourceMetric peak_force, impulse, contact_duration;
+};
+
+// From the levels at plan.sizes on the patch and, when not empty, on the doubled patch.
+SourceReference source_reference(const std::vector<double>& sizes,
+                                 const std::vector<SourceLevel>& patch,
+                                 const std::vector<SourceLevel>& doubled);
 
 }  // namespace asperity::study
