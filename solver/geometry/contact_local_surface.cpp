@@ -1,6 +1,6 @@
 // The contact-local surface (issue 28): the source's triangles kept around the strike point, the
 // rest simplified by constrained edge collapse; the choice of policies is in the header.
-#include "geometry/contact_local_surface.hpp"
+#include "solver/geometry/contact_local_surface.hpp"
 
 #include <stdexcept>
 #include <string>
@@ -11,8 +11,8 @@
 #include <CGAL/Surface_mesh_simplification/Policies/Edge_collapse/LindstromTurk_placement.h>
 #include <CGAL/Surface_mesh_simplification/edge_collapse.h>
 
-#include "core/error.hpp"
-#include "geometry/cgal_surface_mesh.hpp"
+#include "solver/core/error.hpp"
+#include "solver/geometry/cgal_surface_mesh.hpp"
 
 namespace asperity::geometry {
 

@@ -3,8 +3,8 @@
 // the particle itself rather than on a simplification of it.
 #pragma once
 
-#include "core/mesh.hpp"
-#include "core/vec.hpp"
+#include "solver/core/mesh.hpp"
+#include "solver/core/vec.hpp"
 
 namespace asperity::geometry {
 

@@ -5,11 +5,11 @@
 #include <array>
 #include <set>
 
-#include "geometry/contact_local_surface.hpp"
-#include "geometry/mass_properties.hpp"
-#include "geometry/random_particle.hpp"
-#include "geometry/refined_sphere.hpp"
-#include "geometry/repair_mesh.hpp"
+#include "solver/geometry/contact_local_surface.hpp"
+#include "solver/geometry/mass_properties.hpp"
+#include "solver/geometry/random_particle.hpp"
+#include "solver/geometry/refined_sphere.hpp"
+#include "solver/geometry/repair_mesh.hpp"
 
 namespace asperity::geometry {
 namespace {

@@ -11,14 +11,14 @@
 #include <string>
 #include <vector>
 
-#include "contact/hertz_impact.hpp"
-#include "geometry/contact_local_surface.hpp"
-#include "geometry/mass_properties.hpp"
-#include "geometry/random_particle.hpp"
-#include "geometry/repair_mesh.hpp"
-#include "geometry/write_mesh.hpp"
-#include "run/run_scene.hpp"
-#include "scene/scene.hpp"
+#include "solver/contact/hertz_impact.hpp"
+#include "solver/geometry/contact_local_surface.hpp"
+#include "solver/geometry/mass_properties.hpp"
+#include "solver/geometry/random_particle.hpp"
+#include "solver/geometry/repair_mesh.hpp"
+#include "solver/geometry/write_mesh.hpp"
+#include "solver/run/run_scene.hpp"
+#include "solver/scene/scene.hpp"
 #include "study/source_reference.hpp"
 #include "study/tables/study_cases.hpp"
 
