@@ -25,12 +25,14 @@ struct MeshArgs {
   double min_dihedral = 0;
   double element_size = 0;
   bool element_size_given = false;
+  double contact_patch = 0;
   bool no_tets = false, quiet = false;
 };
 
 int cmd_mesh(const MeshArgs& a) {
   geometry::PipelineOptions options;
   options.faces = a.faces;
+  options.contact_patch = a.contact_patch;
   options.read.scale = a.scale;
   options.tetrahedralize = !a.no_tets;
   options.tet.radius_edge_ratio = a.quality;
@@ -99,6 +101,11 @@ void add_mesh_command(CLI::App& app, Action& action) {
       "Target tetrahedron edge length, m (after --scale): the surface triangles are "
       "bisected in their own planes to it and the interior filled with quality "
       "tetrahedra (default: the surface triangles are the elements' faces)");
+  cmd->add_option("--contact-patch", args->contact_patch,
+                  "Radius, m (after --scale): keep every input triangle within it of the lowest "
+                  "vertex and simplify only the rest, to the density of a --faces-triangle "
+                  "particle (a contact-local surface, docs/geometry.md)")
+      ->check(real_number(0, 1e6, false));
   cmd->add_flag("--no-tets", args->no_tets, "Surface only: no tetrahedralization");
   cmd->add_flag("-q,--quiet", args->quiet, "No summary line on stderr");
   cmd->callback([args, element_size, &action] {

@@ -5,6 +5,7 @@
 #include <stdexcept>
 
 #include "solver/core/error.hpp"
+#include "solver/geometry/refined_sphere.hpp"
 #include "solver/geometry/simplify_edge_collapse.hpp"
 #include "solver/geometry/write_mesh.hpp"
 
@@ -30,7 +31,16 @@ PreparedParticle finish(PreparedParticle p, const PipelineOptions& options) {
     throw InputError(p.source_name + ": " + problem);
   }
   auto t0 = std::chrono::steady_clock::now();
-  p.surface = simplify_edge_collapse(p.source, faces);
+  if (options.contact_patch > 0) {
+    p.patch_centre = lowest_vertex(p.source);
+    p.patch_radius = options.contact_patch;
+    ContactLocalSurface local = contact_local_surface(
+        p.source, {.centre = p.patch_centre, .radius = p.patch_radius, .far_faces = faces});
+    p.surface = std::move(local.surface);
+    p.patch_faces = local.kept_faces;
+  } else {
+    p.surface = simplify_edge_collapse(p.source, faces);
+  }
   p.seconds_simplify = seconds_since(t0);
   p.check = check_mesh(p.surface, true);
   if (!p.check.valid()) {
@@ -139,6 +149,10 @@ nlohmann::json mesh_report(const PreparedParticle& p) {
     j["tet_surface_faces"] = p.tets.surface.cols();
     j["element_size"] =
         p.element_size.set() ? nlohmann::json(p.element_size.size) : nlohmann::json();
+  }
+  if (p.patch_radius > 0) {
+    j["contact_patch"] = {
+        {"centre", vec(p.patch_centre)}, {"radius", p.patch_radius}, {"kept_faces", p.patch_faces}};
   }
   j["repairs"] = p.log.repairs;
   j["warnings"] = p.log.warnings;

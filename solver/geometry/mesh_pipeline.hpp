@@ -10,6 +10,7 @@
 #include <nlohmann/json.hpp>
 
 #include "solver/core/mesh.hpp"
+#include "solver/geometry/contact_local_surface.hpp"
 #include "solver/geometry/mass_properties.hpp"
 #include "solver/geometry/read_mesh.hpp"
 #include "solver/geometry/repair_mesh.hpp"
@@ -20,7 +21,11 @@
 namespace asperity::geometry {
 
 struct PipelineOptions {
-  long faces = 0;              // exact triangle count wanted; 0 keeps the input's
+  long faces = 0;  // exact triangle count wanted; 0 keeps the input's
+  // m; > 0: a contact-local surface instead (contact_local_surface.hpp, issue 28): every source
+  // triangle within this radius of the source's lowest vertex kept, the rest simplified to the
+  // density of a `faces`-triangle particle (0: the input's).
+  double contact_patch = 0;
   ReadOptions read;            // scale
   bool tetrahedralize = true;  // false: surface only (rigid bodies need no tetrahedra)
   TetOptions tet;
@@ -38,6 +43,11 @@ struct PreparedParticle {
   MassProperties source_props;
   MeshLog log;          // repairs and warnings
   SurfaceMesh surface;  // exactly `faces` triangles, closed, manifold, outward
+  // With options.contact_patch: the patch's centre (the source's lowest vertex) and radius, m,
+  // and the source triangles kept within it (surface then has those plus the simplified rest).
+  Vec3 patch_centre = Vec3::Zero();
+  double patch_radius = 0;
+  long patch_faces = 0;
   MassProperties props;
   MeshCheck check;     // of `surface`, with self-intersections
   ShapeChange change;  // `surface` against `source`

@@ -1,0 +1,64 @@
+// The source reference's plan (issue 28): strike point, Hertz contact radius, element sizes.
+#include "study/source_reference.hpp"
+
+#include <cmath>
+
+#include "solver/contact/hertz_impact.hpp"
+#include "solver/geometry/local_curvature.hpp"
+#include "solver/geometry/mass_properties.hpp"
+
+namespace asperity::study {
+
+SourceReferencePlan plan_source_reference(const SurfaceMesh& source, const Material& particle,
+                                          double speed, const SourceReferenceOptions& options) {
+  SourceReferencePlan p;
+  const geometry::MassProperties props = geometry::mass_properties(source);
+  p.equivalent_radius = props.equivalent_radius;
+  p.mass = particle.density * props.volume;
+  // The study's sphere-local patch: 2.5 mean edges, about two rings (docs/study.md).
+  const geometry::LocalCurvature curvature =
+      geometry::lowest_point_curvature(source, 2.5 * geometry::mean_edge_length(source));
+  p.strike_point = curvature.point;
+  p.local_radius =
+      curvature.equivalent_radius() > 0 ? curvature.equivalent_radius() : p.equivalent_radius;
+  const double e_star = particle.young / (1 - particle.poisson * particle.poisson);
+  const contact::HertzImpact h = contact::hertz_impact(p.mass, p.local_radius, e_star, speed);
+  p.contact_radius = std::sqrt(p.local_radius * h.max_overlap);
+  p.peak_force = h.peak_force;
+  double size = p.contact_radius / options.elements_across;
+  p.sizes.assign(static_cast<std::size_t>(options.levels), 0);
+  for (int k = options.levels - 1; k >= 0; --k, size *= 2)
+    p.sizes[static_cast<std::size_t>(k)] = size;
+  return p;
+}
+
+namespace {
+
+SourceMetric metric(const std::vector<double>& sizes, const std::vector<SourceLevel>& patch,
+                    const std::vector<SourceLevel>& doubled, double SourceLevel::*value) {
+  const auto limit = [&](const std::vector<SourceLevel>& levels) {
+    std::vector<double> v;
+    for (const SourceLevel& l : levels) v.push_back(l.*value);
+    return tables::richardson(sizes, v);
+  };
+  SourceMetric m;
+  m.limit = limit(patch);
+  m.uncertainty = m.limit.error;
+  if (!doubled.empty()) {
+    m.patch_change = limit(doubled).limit / m.limit.limit - 1;
+    m.uncertainty = std::hypot(m.limit.error, m.patch_change);
+  }
+  return m;
+}
+
+}  // namespace
+
+SourceReference source_reference(const std::vector<double>& sizes,
+                                 const std::vector<SourceLevel>& patch,
+                                 const std::vector<SourceLevel>& doubled) {
+  return {.peak_force = metric(sizes, patch, doubled, &SourceLevel::peak_force),
+          .impulse = metric(sizes, patch, doubled, &SourceLevel::impulse),
+          .contact_duration = metric(sizes, patch, doubled, &SourceLevel::contact_duration)};
+}
+
+}  // namespace asperity::study

@@ -1,0 +1,69 @@
+// The study's reference made from the particle itself (issue 28): the source surface kept
+// around the strike point (geometry/contact_local_surface.hpp), the elements refined there in
+// levels whose finest puts several elements across Hertz's contact radius at peak, and the
+// reference the Richardson limit of those levels (tables/study_cases.hpp, `richardson`).
+#pragma once
+
+#include <vector>
+
+#include "solver/core/material.hpp"
+#include "solver/core/mesh.hpp"
+#include "solver/core/vec.hpp"
+#include "study/tables/study_cases.hpp"
+
+namespace asperity::study {
+
+struct SourceReferenceOptions {
+  // The contact patch's radius over the particle's equivalent radius R: every source triangle
+  // within it of the strike point is kept; the patch-size check runs at twice it.
+  double patch = 0.25;
+  // The rest of the surface at the density of a particle of this many triangles.
+  long far_faces = 2000;
+  int levels = 3;              // refined levels, h halving from one to the next
+  double elements_across = 3;  // the finest h is Hertz's contact radius at peak over this
+};
+
+struct SourceReferencePlan {
+  Vec3 strike_point = Vec3::Zero();  // the source's lowest vertex, m
+  double equivalent_radius = 0;      // m, of the source
+  double mass = 0;                   // kg
+  // √(R1 R2) of the source at the strike point (geometry/local_curvature.hpp), m; the
+  // equivalent radius where the surface there is flat or concave (no Hertz sphere).
+  double local_radius = 0;
+  double contact_radius = 0;  // Hertz's a at peak on local_radius, the block rigid, m
+  double peak_force = 0;      // Hertz's peak on local_radius, N (sets only the sizes' scale)
+  std::vector<double> sizes;  // element sizes at the strike point, m, descending (halving)
+};
+
+// The plan for `source` (closed, outward, in the placement's frame: it falls along −z onto a
+// rigid block) of `particle`'s material at `speed` (m/s): Hertz's impact of a sphere of the
+// local radius and the particle's mass on a rigid half-space (Johnson 1985, §11.4:
+// δ = (15 m v² / (16 E* √R))^{2/5}, a = √(R δ), E* = E/(1 − ν²)), the finest size
+// a / elements_across and each coarser level twice the next.
+SourceReferencePlan plan_source_reference(const SurfaceMesh& source, const Material& particle,
+                                          double speed, const SourceReferenceOptions& options);
+
+// One refined level's measures.
+struct SourceLevel {
+  double peak_force = 0, impulse = 0, contact_duration = 0;  // N, N s, s
+};
+
+// The reference of one metric: the Richardson limit of the levels on the patch (with its
+// estimated error, relative, and the order used, observed or assumed: tables::richardson), the
+// relative change of the limit when the patch is doubled (NaN when not run), and the reference's
+// uncertainty, the two in quadrature (the patch term left out when not run).
+struct SourceMetric {
+  tables::Extrapolation limit;
+  double patch_change = std::nan("");
+  double uncertainty = std::nan("");
+};
+struct SourceReference {
+  SourceMetric peak_force, impulse, contact_duration;
+};
+
+// From the levels at plan.sizes on the patch and, when not empty, on the doubled patch.
+SourceReference source_reference(const std::vector<double>& sizes,
+                                 const std::vector<SourceLevel>& patch,
+                                 const std::vector<SourceLevel>& doubled);
+
+}  // namespace asperity::study
