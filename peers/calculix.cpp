@@ -253,9 +253,9 @@ PeerTrace run(const scene::SceneDef& s, const Resolved& r, const fs::path& exe, 
           {"poisson", m.poisson},
           {"density", m.density},
           {"penalty_slope", kPenaltyFactor * m.young / mesh.element_size},
-          // ccx's node-to-face tension at large clearances: 1e-6 of E, negligible against the
-          // contact pressures (p0 ≈ 0.07 E at a/R = 0.107).
-          {"sigma_inf", 1e-6 * m.young},
+          // ccx's node-to-face tension at large clearances (Pa): 1e-3 of Hertz's peak pressure
+          // 3F/(2πa²), a = √(Rδ); the force reads zero to print precision once apart.
+          {"sigma_inf", 1e-3 * 2 * e_star * std::sqrt(overlap / radius) / std::numbers::pi},
           {"alpha", -0.05},
           {"dt", t_hertz / kIncrementsPerHertzTime},
           {"t_end", t_end},
