@@ -20,7 +20,6 @@ On failure it writes error.txt (one line) and exits 1.
 """
 
 import json
-import math
 import os
 import re
 import resource
@@ -106,7 +105,7 @@ def write_deck(p, nodes, tets, path):
     slave = set()
     for f in boundary_nodes(tets):
         xs = [nodes[n] for n in f]
-        if (all(abs(x[0]) < tol for x in xs) or all(abs(x[1]) < tol for x in xs)):
+        if all(abs(x[0]) < tol for x in xs) or all(abs(x[1]) < tol for x in xs):
             continue
         if all(x[2] < gap + 0.4 * r for x in xs):
             slave.update(f)
