@@ -83,7 +83,8 @@ Measured calculix_level(double a_over_r, double s, const std::string& tag) {
          {"shape", {{"type", "plane"}, {"point", {0.0, 0.0, 0.0}}, {"normal", {0.0, 0.0, 1.0}}}}}}},
       {"contact", {{"law", "potential"}}},
       {"record", {{"force_on", "ball"}}}};
-  const scene::SceneDef scene = scene::parse_scene(scene_json, dir / "scene.json", "scene");
+  std::ofstream(dir / "scene.json") << scene_json.dump(2) << "\n";  // to rerun it by hand
+  const scene::SceneDef scene = scene::parse_scene(scene_json, dir / "scene.json", "");
   const peers::Adapter& a = peers::find_adapter("calculix");
   // The step count only bounds the end: the adapter stops 1.2 Hertz times after the touch.
   const run::RunResult r = peers::run_peer(a, peers::peer_executable(a, ""), scene,
