@@ -41,8 +41,10 @@ def geo_text(p):
     distance from the focus."""
     r = p["radius"]
     fx, fy, fz = p["focus"]
-    size = ("Min(%.12g, %.12g + %.12g*Max(0, Sqrt((x-%.12g)^2+(y-%.12g)^2+(z-%.12g)^2) - %.12g))" %
-            (p["far"], p["size"], p["growth"], fx, fy, fz, p["focus_radius"]))
+    # Every coordinate in parentheses: gmsh's MathEval rejects "y--1e-18".
+    distance = "Sqrt((x-(%.12g))^2+(y-(%.12g))^2+(z-(%.12g))^2)" % (fx, fy, fz)
+    size = "Min(%.12g, %.12g + %.12g*Max(0, %s - %.12g))" % (
+        p["far"], p["size"], p["growth"], distance, p["focus_radius"])
     lines = ['SetFactory("OpenCASCADE");',
              "Sphere(1) = {0, 0, %.12g, %.12g};" % (p["gap"] + r, r),
              "Box(2) = {0, 0, %.12g, %.12g, %.12g, %.12g};" % (p["gap"], 2 * r, 2 * r, 2 * r),
