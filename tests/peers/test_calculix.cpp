@@ -154,10 +154,12 @@ TEST(CalculiX, CoarseSphereConservesMomentumAndLiesOnTheStiffSideOfTheFiniteSphe
   // softening term, p0 h/(50 E) of the approach: 0.5 % at this level, the margin allowed.
   EXPECT_GT(l.err_filtered, ref.filtered - 0.005);
   EXPECT_LT(l.err_duration, ref.duration + 0.005);
-  // The 2 %: the finite sphere's own correction to Hertz is 5 % here, so a level that
-  // misses it by 2 % has resolved more than half of it.
+  // The 2 % on the peak: the finite sphere's own correction to Hertz is 5 % here, so a
+  // level within 2 % of it has resolved more than half of it. Not on one coarse level's duration:
+  // its end is the penalty release of the last few nodes, whose tail moved the duration by 0.8
+  // point between two meshes of this level (the sphere 0.24 mm above the plane or touching it:
+  // −5.47 against −4.65 %); the duration is gated on the limits (calculix-full).
   EXPECT_NEAR(l.err_filtered, ref.filtered, 0.02);
-  EXPECT_NEAR(l.err_duration, ref.duration, 0.02);
 }
 
 // asperity's sequence on the same sphere and law (scenes/hertz_series.hpp's block levels, the
