@@ -1,5 +1,5 @@
-// `asperity crosscheck SCENE.json --out DIR [--peer yade|lammps|liggghts ...]`: the scene in
-// asperity and in each peer, side by side (peers/, docs/crosscheck.md).
+// `asperity crosscheck SCENE.json --out DIR [--peer yade|lammps|liggghts|calculix ...]`: the scene
+// in asperity and in each peer, side by side (peers/, docs/crosscheck.md).
 #include <memory>
 
 #include "app/cli_numbers.hpp"
@@ -14,7 +14,7 @@ void add_crosscheck_command(CLI::App& app, Action& action) {
   struct Args {
     peers::CrosscheckOptions o;
     std::vector<std::string> peers;
-    std::string yade, lammps, liggghts;
+    std::string yade, lammps, liggghts, calculix;
   };
   auto args = std::make_shared<Args>();
   std::string names;
@@ -33,6 +33,7 @@ void add_crosscheck_command(CLI::App& app, Action& action) {
   cc->add_option("--yade", args->yade, "YADE executable (default: yade on PATH)");
   cc->add_option("--lammps", args->lammps, "LAMMPS executable (default: lmp on PATH)");
   cc->add_option("--liggghts", args->liggghts, "LIGGGHTS executable (default: liggghts on PATH)");
+  cc->add_option("--calculix", args->calculix, "CalculiX executable (default: ccx on PATH)");
   cc->add_option("--max-rel-diff", args->o.max_rel_diff,
                  "Exit 1 unless peak force, impulse and contact duration agree with every peer "
                  "within this relative difference")
@@ -56,7 +57,8 @@ void add_crosscheck_command(CLI::App& app, Action& action) {
       if (!args->peers.empty()) o.peers = args->peers;
       for (const auto& [peer, exe] : {std::pair{"yade", args->yade},
                                       {"lammps", args->lammps},
-                                      {"liggghts", args->liggghts}}) {
+                                      {"liggghts", args->liggghts},
+                                      {"calculix", args->calculix}}) {
         if (!exe.empty()) o.programs[peer] = exe;
       }
       return peers::crosscheck(o);

@@ -37,7 +37,9 @@ scene::SceneDef load_scene_or_case(const fs::path& file) {
 namespace {
 
 constexpr const char* kGated[] = {"peak_force", "impulse", "contact_duration"};
-constexpr const char* kOther[] = {"max_overlap",
+constexpr const char* kOther[] = {"peak_force_filtered",
+                                  "ringing_amplitude",
+                                  "max_overlap",
                                   "first_contact_time",
                                   "restitution",
                                   "tangential_restitution",

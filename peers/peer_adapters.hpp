@@ -1,4 +1,5 @@
-// The adapters in the table of peers.cpp, one file each (yade.cpp, lammps.cpp, liggghts.cpp).
+// The adapters in the table of peers.cpp, one file each (yade.cpp, lammps.cpp, liggghts.cpp,
+// calculix.cpp).
 #pragma once
 
 #include <filesystem>
@@ -10,6 +11,7 @@ namespace asperity::peers {
 Adapter yade_adapter();
 Adapter lammps_adapter();
 Adapter liggghts_adapter();
+Adapter calculix_adapter();
 
 // A trace written as CSV (the YADE recorder's raw.csv): header, then per step
 // t,fx,fy,fz (with `own_contact`, then s,nx,ny,nz: the peer's overlap and normal, PeerTrace)

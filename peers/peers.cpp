@@ -22,7 +22,8 @@ namespace fs = std::filesystem;
 using Json = nlohmann::ordered_json;
 
 const std::vector<Adapter>& adapters() {
-  static const std::vector<Adapter> table{yade_adapter(), lammps_adapter(), liggghts_adapter()};
+  static const std::vector<Adapter> table{yade_adapter(), lammps_adapter(), liggghts_adapter(),
+                                          calculix_adapter()};
   return table;
 }
 
@@ -266,6 +267,10 @@ run::RunResult measure_trace(const scene::SceneDef& s, const Resolved& resolved,
                             .recorded_body = s.bodies[static_cast<std::size_t>(rec)].name};
   run::write_measures(j, id, r.status, "", im, tr.t.back(), restitution.value(), std::nullopt);
   j["peer_version"] = tr.version;
+  // The peak both codes compare on a deformable body: the T/20 moving average, and how much of
+  // the raw peak lies above it (what asperity's mesh runs report, run_fdem.cpp).
+  j["peak_force_filtered"] = im.filtered_peak();
+  j["ringing_amplitude"] = im.ringing_amplitude();
   if (const auto impact = run::first_impact(s)) {
     auto motion = [&](int body) {
       const int f = free_index[static_cast<std::size_t>(body)];

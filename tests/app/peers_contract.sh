@@ -3,19 +3,20 @@
 # exit 2 for usage (unknown or uninstalled peer, a scene a peer cannot express, a --solver-cmd
 # without {scene} and {out}) with nothing written, exit 1 for a peer or solver that fails, JUnit
 # with readable messages, and the example solver: exact passes the Hertz cases, x1.05 fails them.
-# Needs the Debian packages yade, lammps and liggghts (deps/debian-packages.txt).
+# Needs the Debian packages yade, lammps, liggghts and calculix-ccx (deps/debian-packages.txt).
 set -u
 source "$(dirname "$0")/checks.sh"
 lines() { wc -l < "$1"; }
 plane=$src/validation/cases/record/record-on-plane-normal.json
 box=$src/validation/cases/record/record-on-box-oblique.json
 mesh=$src/validation/cases/stability/stability-rigid-particle-block.json
+fem=$src/validation/cases/stability/stability-fem-particle-block.json
 solver="python3 $src/peers/example_solver/hertz_solver.py"
 
 # Usage errors: exit 2, one line naming the peer and the reason, nothing written.
 "$bin" crosscheck "$plane" --out "$work/u1" --peer nosuch 2> "$work/u1.err"
 check "unknown peer exits 2" test $? -eq 2
-check "unknown peer: one line naming the known ones" grep -q "nosuch: unknown peer (known: yade, lammps, liggghts)" "$work/u1.err"
+check "unknown peer: one line naming the known ones" grep -q "nosuch: unknown peer (known: yade, lammps, liggghts, calculix)" "$work/u1.err"
 check "unknown peer: nothing written" test ! -e "$work/u1"
 "$bin" crosscheck "$plane" --out "$work/u2" --peer lammps --lammps /nonexistent/lmp 2> "$work/u2.err"
 check "uninstalled peer exits 2" test $? -eq 2
@@ -29,6 +30,14 @@ check "mesh body: nothing written" test ! -e "$work/u3"
 "$bin" crosscheck "$box" --out "$work/u4" --peer yade,liggghts 2> "$work/u4.err"
 check "box for liggghts exits 2 before yade runs" test $? -eq 2
 check "box: nothing written" test ! -e "$work/u4"
+"$bin" crosscheck "$mesh" --out "$work/u7" --peer calculix 2> "$work/u7.err"
+check "rigid particle for calculix exits 2" test $? -eq 2
+check "rigid particle: names the body and calculix's reason" grep -q "stability-rigid-particle-block.json: bodies\[0\] .*calculix: one moving fem body" "$work/u7.err"
+check "rigid particle for calculix: nothing written" test ! -e "$work/u7"
+"$bin" crosscheck "$fem" --out "$work/u8" --peer calculix 2> "$work/u8.err"
+check "fem rock for calculix exits 2" test $? -eq 2
+check "fem rock: one line naming calculix's reason" grep -q "bodies\[0\] .*calculix: " "$work/u8.err"
+check "fem rock: one line" test "$(lines "$work/u8.err")" -eq 1
 "$bin" validate "$src/validation/cases/hertz" --out "$work/u5" --solver-cmd "$solver" 2> "$work/u5.err"
 check "--solver-cmd without {scene} {out} exits 2" test $? -eq 2
 check "--solver-cmd: nothing written" test ! -e "$work/u5"

@@ -1,0 +1,303 @@
+#!/usr/bin/env python3
+"""CalculiX (ccx 2.20) on a deformable sphere striking a rigid plane, as the calculix peer
+adapter hands it over (docs/crosscheck.md, "CalculiX").
+
+Usage: scene_to_calculix.py INPUT.json DIR
+
+INPUT.json (written by peers/calculix.cpp) gives the problem in the plane's frame: the plane is
+z = 0 with its normal +z into the free side, the strike point on the z axis `gap` above it, the
+sphere's centre at (0, 0, gap + R), moving at -`speed` along z. DIR receives
+
+- ball.geo, mesh.inp (gmsh), impact.inp (the deck), impact.dat / impact.sta (ccx's own output),
+  ccx.log;
+- raw.csv: per ccx increment t, fx, fy, fz (the contact force on the recorded body, in the
+  scene's frame), s, nx, ny, nz (the strike point's penetration of the plane, m, negative while
+  apart, and the contact normal into the recorded body), then the sphere's centre position and
+  velocity (momentum balance of the meshed mass under the contact force and gravity);
+- raw.json: the mesh's counts, the meshed mass, ccx's CPU and wall seconds, its version.
+
+On failure it writes error.txt (one line) and exits 1.
+"""
+
+import json
+import os
+import re
+import resource
+import subprocess
+import sys
+import time
+
+
+def fail(out_dir, why):
+    with open(os.path.join(out_dir, "error.txt"), "w") as f:
+        f.write(why.replace("\n", " ") + "\n")
+    sys.exit(1)
+
+
+def geo_text(p):
+    """gmsh geometry: the sphere's quarter x >= 0, y >= 0 (the two planes of symmetry through
+    the strike point) with the scene's element size graded to the focus:
+    size + growth * max(0, d - focus_radius), capped at far (geometry/element_size.hpp), d the
+    distance from the focus."""
+    r = p["radius"]
+    fx, fy, fz = p["focus"]
+    # Every coordinate in parentheses: gmsh's MathEval rejects "y--1e-18".
+    distance = "Sqrt((x-(%.12g))^2+(y-(%.12g))^2+(z-(%.12g))^2)" % (fx, fy, fz)
+    size = "Min(%.12g, %.12g + %.12g*Max(0, %s - %.12g))" % (
+        p["far"], p["size"], p["growth"], distance, p["focus_radius"])
+    lines = ['SetFactory("OpenCASCADE");',
+             "Sphere(1) = {0, 0, %.12g, %.12g};" % (p["gap"] + r, r),
+             "Box(2) = {0, 0, %.12g, %.12g, %.12g, %.12g};" % (p["gap"], 2 * r, 2 * r, 2 * r),
+             "BooleanIntersection(3) = { Volume{1}; Delete; }{ Volume{2}; Delete; };",
+             'Physical Volume("BALL") = {3};',
+             "Field[1] = MathEval;",
+              'Field[1].F = "%s";' % size,
+              "Background Field = 1;",
+              "Mesh.MeshSizeExtendFromBoundary = 0;",
+              "Mesh.MeshSizeFromPoints = 0;",
+              "Mesh.MeshSizeFromCurvature = 0;",
+              "Mesh.Algorithm3D = 1;",
+              "Mesh.Optimize = 1;",
+              "Mesh.RandomSeed = 1;",
+              "General.NumThreads = 1;"]
+    return "\n".join(lines) + "\n"
+
+
+def read_mesh(path):
+    nodes, tets = {}, []
+    mode = None
+    with open(path) as f:
+        for line in f:
+            if line.startswith("*"):
+                u = line.upper().replace(" ", "")
+                mode = ("node" if u.startswith("*NODE") else
+                        "tet" if u.startswith("*ELEMENT") and "TYPE=C3D4" in u else None)
+                continue
+            if mode == "node":
+                v = line.split(",")
+                nodes[int(v[0])] = (float(v[1]), float(v[2]), float(v[3]))
+            elif mode == "tet":
+                v = [int(x) for x in line.split(",") if x.strip()]
+                tets.append(v[1:5])
+    return nodes, tets
+
+
+def tet_volume(a, b, c, d):
+    u = [b[i] - a[i] for i in range(3)]
+    v = [c[i] - a[i] for i in range(3)]
+    w = [d[i] - a[i] for i in range(3)]
+    return (u[0] * (v[1] * w[2] - v[2] * w[1]) - u[1] * (v[0] * w[2] - v[2] * w[0]) +
+            u[2] * (v[0] * w[1] - v[1] * w[0])) / 6.0
+
+
+def boundary_nodes(tets):
+    count = {}
+    for t in tets:
+        for f in ((t[0], t[1], t[2]), (t[0], t[1], t[3]), (t[0], t[2], t[3]), (t[1], t[2], t[3])):
+            k = tuple(sorted(f))
+            count[k] = count.get(k, 0) + 1
+    return [k for k, n in count.items() if n == 1]
+
+
+def write_deck(p, nodes, tets, path):
+    r, gap = p["radius"], p["gap"]
+    tol = 1e-9 * r
+    # Slave: the sphere's surface within the contact zone (faces on a plane of symmetry are not
+    # surface); the zone is the lower 40 % of the radius, above any contact this model accepts.
+    slave = set()
+    for f in boundary_nodes(tets):
+        xs = [nodes[n] for n in f]
+        if all(abs(x[0]) < tol for x in xs) or all(abs(x[1]) < tol for x in xs):
+            continue
+        if all(x[2] < gap + 0.4 * r for x in xs):
+            slave.update(f)
+    # The strike point: the lowest node on the axis through it.
+    pole = min((n for n in nodes if abs(nodes[n][0]) + abs(nodes[n][1]) < tol),
+               key=lambda n: nodes[n][2])
+    # The plane: one fixed hexahedron under the contact zone (its top face the master surface).
+    top = 0.0
+    lo, hi = -0.05 * r, 0.9 * r
+    base = max(nodes) + 1
+    hexn = [(lo, lo, -0.2 * r), (hi, lo, -0.2 * r), (hi, hi, -0.2 * r), (lo, hi, -0.2 * r),
+            (lo, lo, top), (hi, lo, top), (hi, hi, top), (lo, hi, top)]
+    out = ["*HEADING", "asperity calculix peer: %s" % p["scene"], "*NODE, NSET=NALL"]
+    out += ["%d, %.12g, %.12g, %.12g" % (n, *nodes[n]) for n in sorted(nodes)]
+    out += ["*NODE, NSET=NPLANE"]
+    out += ["%d, %.12g, %.12g, %.12g" % (base + i, *x) for i, x in enumerate(hexn)]
+    out += ["*ELEMENT, TYPE=C3D4, ELSET=EBALL"]
+    out += ["%d, %d, %d, %d, %d" % (i + 1, *t) for i, t in enumerate(tets)]
+    eplane = len(tets) + 1
+    out += ["*ELEMENT, TYPE=C3D8, ELSET=EPLANE",
+            "%d, %s" % (eplane, ", ".join(str(base + i) for i in range(8)))]
+    out += ["*NSET, NSET=NSLAVE"] + chunks(sorted(slave))
+    out += ["*NSET, NSET=NPOLE", str(pole)]
+    out += ["*NSET, NSET=NSYMX"] + chunks([n for n in nodes if abs(nodes[n][0]) < tol])
+    out += ["*NSET, NSET=NSYMY"] + chunks([n for n in nodes if abs(nodes[n][1]) < tol])
+    out += ["*SURFACE, NAME=SSLAVE, TYPE=NODE", "NSLAVE",
+            "*SURFACE, NAME=SPLANE, TYPE=ELEMENT", "%d, S2" % eplane]
+    law = p["law"]
+    out += ["*MATERIAL, NAME=BALL"]
+    if law == "linear":
+        out += ["*ELASTIC", "%.12g, %.12g" % (p["young"], p["poisson"])]
+    else:
+        # ccx's compressible neo-Hooke: W = C10 (I1bar - 3) + (J - 1)^2 / D1, C10 = mu / 2,
+        # D1 = 2 / K: asperity's neo-Hookean to first order in the strain.
+        e, nu = p["young"], p["poisson"]
+        mu, k = e / (2 * (1 + nu)), e / (3 * (1 - 2 * nu))
+        out += ["*HYPERELASTIC, NEO HOOKE", "%.12g, %.12g" % (mu / 2, 2 / k)]
+    out += ["*DENSITY", "%.12g" % p["density"],
+            "*MATERIAL, NAME=PLANE", "*ELASTIC", "%.12g, 0.3" % p["young"], "*DENSITY",
+            "%.12g" % p["density"],
+            "*SOLID SECTION, ELSET=EBALL, MATERIAL=BALL",
+            "*SOLID SECTION, ELSET=EPLANE, MATERIAL=PLANE",
+            "*SURFACE INTERACTION, NAME=SI",
+            "*SURFACE BEHAVIOR, PRESSURE-OVERCLOSURE=LINEAR",
+            # slope (N/m^3) and the small tension sigma_inf of ccx's node-to-face law (Pa)
+            "%.12g, %.12g" % (p["penalty_slope"], p["sigma_inf"]),
+            "*CONTACT PAIR, INTERACTION=SI, TYPE=NODE TO SURFACE",
+            "SSLAVE, SPLANE",
+            "*INITIAL CONDITIONS, TYPE=VELOCITY",
+            "NALL, 3, %.12g" % (-p["speed"]),
+            "*BOUNDARY", "NPLANE, 1, 3", "NSYMX, 1, 1", "NSYMY, 2, 2"]
+    nl = ", NLGEOM" if law != "linear" else ""
+    out += ["*STEP, INC=1000000%s" % nl,
+            "*DYNAMIC, DIRECT, ALPHA=%.12g" % p["alpha"],
+            "%.12g, %.12g" % (p["dt"], p["t_end"])]
+    if p["gravity_z"] != 0:
+        out += ["*DLOAD", "EBALL, GRAV, %.12g, 0, 0, -1" % (-p["gravity_z"])]
+    out += ["*NODE PRINT, NSET=NPLANE, TOTALS=ONLY, FREQUENCY=1", "RF",
+            "*NODE PRINT, NSET=NPOLE, FREQUENCY=1", "U",
+            "*END STEP"]
+    with open(path, "w") as f:
+        f.write("\n".join(out) + "\n")
+    return len(slave), pole
+
+
+def chunks(ids, per=8):
+    return [", ".join(str(i) for i in ids[k:k + per]) for k in range(0, len(ids), per)]
+
+
+def read_dat(path):
+    """Per increment: the plane's total reaction force and the pole's displacement."""
+    force, pole = {}, {}
+    what, t = None, None
+    num = r"([-+]?\d*\.?\d+(?:[eE][-+]?\d+)?)"
+    with open(path) as f:
+        for line in f:
+            m = re.search(r"total force \(fx,fy,fz\) for set NPLANE and time\s+" + num, line)
+            if m:
+                what, t = "force", float(m.group(1))
+                continue
+            m = re.search(r"displacements \(vx,vy,vz\) for set NPOLE and time\s+" + num, line)
+            if m:
+                what, t = "u", float(m.group(1))
+                continue
+            v = line.split()
+            if what == "force" and len(v) == 3:
+                force[t] = [float(x) for x in v]
+                what = None
+            elif what == "u" and len(v) == 4:
+                pole[t] = [float(x) for x in v[1:]]
+                what = None
+    return force, pole
+
+
+def write_trace(out_dir, p, mass, pole_z):
+    """raw.csv from impact.dat; returns the number of increments."""
+    force, pole_u = read_dat(os.path.join(out_dir, "impact.dat"))
+    times = sorted(set(force) & set(pole_u))
+    if not times:
+        fail(out_dir, "ccx wrote no force history (impact.dat)")
+    gap, g = p["gap"], p["gravity_z"]
+    # (t, contact force on the ball along z, the pole's penetration s, centre height, velocity)
+    rows = [(0.0, 0.0, -gap, gap + p["radius"], -p["speed"])]
+    for t in times:
+        # The supports' reaction RF balances the ball's push on the fixed plane, so it equals
+        # the contact force on the ball (the plane's is its opposite); by symmetry the whole
+        # sphere's (4 quarters) is along z. The centre moves by the momentum balance.
+        fz = 4 * force[t][2]
+        t0, f0, _, z0, v0 = rows[-1]
+        a0, a1, dt = f0 / mass + g, fz / mass + g, t - t0
+        rows.append((t, fz, -(pole_z + pole_u[t][2]), z0 + v0 * dt + (2 * a0 + a1) * dt * dt / 6,
+                     v0 + 0.5 * (a0 + a1) * dt))
+    rows = with_contact_ends(rows)
+    e1, e2, e3, origin = (p["frame"][k] for k in ("e1", "e2", "e3", "origin"))
+    sign = 1.0 if p["record"] == "ball" else -1.0
+    with open(os.path.join(out_dir, "raw.csv"), "w") as f:
+        f.write("t,fx,fy,fz,s,nx,ny,nz,x,y,z,vx,vy,vz\n")
+        for t, fz, s, z, v in rows:
+            values = ([t] + [sign * fz * c for c in e3] + [s] + [sign * c for c in e3] +
+                      [origin[i] + z * e3[i] for i in range(3)] + [v * c for c in e3])
+            f.write(",".join("%.12g" % c for c in values) + "\n")
+    return len(times)
+
+
+def with_contact_ends(rows):
+    """Each contact's end placed between increments. The pole's penetration is a penalty
+    layer's (micrometres) while in contact and jumps to the rebound's clearance once out, so
+    interpolating it would put the end at the last increment with a force, up to a whole increment
+    (1 % of T_H) early. At the end the last nodes in contact leave the penalty layer at a finite
+    speed, so the force, K times their penetration, falls linearly to zero (measured: decrements of
+    1.8 N per T_H/200 over the last four increments of a/R = 0.15, s = 1): the end is the zero of
+    the line through the force at the last two increments with a force, and a sample with no force
+    and no penetration is inserted there."""
+    out = []
+    for k, row in enumerate(rows):
+        out.append(row)
+        if 0 < k < len(rows) - 1 and row[1] > 0 and rows[k + 1][1] <= 0 and rows[k - 1][1] > row[1]:
+            (t0, f0, *_), (t1, f1, _, z1, v1), t2 = rows[k - 1], row, rows[k + 1][0]
+            te = min(t2, t1 + f1 * (t1 - t0) / (f0 - f1))
+            w = (te - t1) / (t2 - t1)
+            z2, v2 = rows[k + 1][3], rows[k + 1][4]
+            out.append((te, 0.0, 0.0, z1 + w * (z2 - z1), v1 + w * (v2 - v1)))
+    return out
+
+
+def main():
+    inp, out_dir = sys.argv[1], sys.argv[2]
+    with open(inp) as f:
+        p = json.load(f)
+    wall0 = time.time()
+    with open(os.path.join(out_dir, "ball.geo"), "w") as f:
+        f.write(geo_text(p))
+    gmsh = subprocess.run([p["gmsh"], "-3", "ball.geo", "-format", "inp", "-o", "mesh.inp"],
+                          cwd=out_dir, capture_output=True, text=True)
+    with open(os.path.join(out_dir, "gmsh.log"), "w") as f:
+        f.write(gmsh.stdout + gmsh.stderr)
+    if gmsh.returncode != 0 or not os.path.exists(os.path.join(out_dir, "mesh.inp")):
+        fail(out_dir, "gmsh failed (exit %d): %s" % (gmsh.returncode,
+                                                      (gmsh.stdout + gmsh.stderr)[-300:]))
+    nodes, tets = read_mesh(os.path.join(out_dir, "mesh.inp"))
+    if not tets:
+        fail(out_dir, "gmsh wrote no tetrahedra (mesh.inp)")
+    copies = 4  # the quarter model
+    volume = sum(tet_volume(*(nodes[n] for n in t)) for t in tets)
+    if volume < 0:
+        fail(out_dir, "gmsh's tetrahedra are inverted")
+    mass = copies * volume * p["density"]
+    nslave, pole = write_deck(p, nodes, tets, os.path.join(out_dir, "impact.inp"))
+    before = resource.getrusage(resource.RUSAGE_CHILDREN)
+    t0 = time.time()
+    env = dict(os.environ, OMP_NUM_THREADS="1", CCX_NPROC_EQUATION_SOLVER="1")
+    with open(os.path.join(out_dir, "ccx.log"), "w") as log:
+        code = subprocess.run([p["ccx"], "impact"], cwd=out_dir, stdout=log, stderr=log,
+                              stdin=subprocess.DEVNULL, env=env).returncode
+    after = resource.getrusage(resource.RUSAGE_CHILDREN)
+    ccx_wall = time.time() - t0
+    ccx_cpu = (after.ru_utime + after.ru_stime) - (before.ru_utime + before.ru_stime)
+    log = open(os.path.join(out_dir, "ccx.log")).read()
+    if code != 0 or "Job finished" not in log:
+        why = [ln for ln in log.splitlines() if "ERROR" in ln.upper()]
+        fail(out_dir, "ccx failed (exit %d): %s" % (code, (why[-1] if why else log[-300:]).strip()))
+    nincrements = write_trace(out_dir, p, mass, nodes[pole][2])
+    version = re.search(r"Version\s+([\d.]+)", log)
+    with open(os.path.join(out_dir, "raw.json"), "w") as f:
+        json.dump({"ccx_version": version.group(1) if version else "",
+                   "nodes": len(nodes), "tets": len(tets), "symmetry": "quarter",
+                   "slave_nodes": nslave, "meshed_mass": mass, "increments": nincrements,
+                   "cpu_seconds": ccx_cpu, "wall_seconds": ccx_wall,
+                   "total_wall_seconds": time.time() - wall0}, f, indent=2)
+
+
+if __name__ == "__main__":
+    main()
