@@ -735,6 +735,12 @@ def answer_section(doc, study, published):
     few = [r for r in read_csv(os.path.join(study, "few_hundred.csv")) if r["placement"] == pl]
     if few:
         doc.p("Is a few hundred triangles (at most 500) enough? " + few_hundred_sentence(few, names) + ".")
+    with open(os.path.join(study, "study.json")) as fh:
+        definition = json.load(fh)
+    k = (definition.get("orientations") or {}).get("random")
+    over = (f" Each particle is studied at {k} random orientations, each against its own reference: 'particles' below "
+            f"are the {len(definition['particles'])} particle-orientations ({len(definition['particles']) // k} "
+            f"particles x {k}), so each error is a distribution over particles and orientations." if k else "")
     doc.p(f"To get within X % of the converged fem reference (placed by {pl}), use the cheapest model below; "
           "'median' holds for half the particles, 'p90' for 90 % of them. Each entry: model, surface triangles, "
           "element size at the strike point over the equivalent radius when refined, its error "
@@ -743,7 +749,7 @@ def answer_section(doc, study, published):
           "construction are left out (the first-contact time under lowest placement, where every model starts "
           "with its lowest point at the same gap). The published study (Zhang & Zsaki 2019, "
           f"fem): {published['cpu_seconds_100']} s at 100 and {published['cpu_seconds_1000']} s at 1000 triangles "
-          "per simulation.")
+          "per simulation." + over)
 
     def entry(r):
         if not r:
@@ -901,7 +907,8 @@ def main():
           "reference (err_fem): the limit of the fem refinement sequence (refined at the strike point, extrapolated "
           "as above) at the finest resolution, same placement (docs/study.md). The sphere, rigid and sphere-local "
           "models strike a rigid block, as the fem does. "
-          "Tables: cases, references, classification, particle_classes, cpu_fit, candidates, guidelines, as CSV and as Markdown "
+          "Tables: cases, references, classification, particle_classes, cpu_fit, candidates, guidelines, discretization, "
+          "answer, few_hundred, as CSV and as Markdown "
           "beside this file; every chart as PNG and SVG.")
 
     doc.h(2, "Cost")
