@@ -1,5 +1,5 @@
 // `asperity crosscheck SCENE.json --out DIR [--peer yade|lammps|liggghts ...]`: the scene in
-// asperity and in each peer, side by side (validation/peers/, docs/crosscheck.md).
+// asperity and in each peer, side by side (peers/, docs/crosscheck.md).
 #include <memory>
 
 #include "app/commands.hpp"

@@ -8,8 +8,8 @@
 #include "app/cli_numbers.hpp"
 #include "app/commands.hpp"
 #include "app/out_folder.hpp"
-#include "core/error.hpp"
-#include "geometry/mesh_pipeline.hpp"
+#include "solver/core/error.hpp"
+#include "solver/geometry/mesh_pipeline.hpp"
 
 namespace asperity::app {
 namespace {

@@ -8,11 +8,11 @@
 #include "app/cli_numbers.hpp"
 #include "app/commands.hpp"
 #include "app/out_folder.hpp"
-#include "core/error.hpp"
-#include "geometry/random_particle.hpp"
-#include "geometry/repair_mesh.hpp"
-#include "geometry/write_mesh.hpp"
-#include "io/json_file.hpp"
+#include "solver/core/error.hpp"
+#include "solver/geometry/random_particle.hpp"
+#include "solver/geometry/repair_mesh.hpp"
+#include "solver/geometry/write_mesh.hpp"
+#include "solver/io/json_file.hpp"
 
 namespace asperity::app {
 namespace {

@@ -6,7 +6,7 @@
 #include <memory>
 
 #include "app/commands.hpp"
-#include "core/error.hpp"
+#include "solver/core/error.hpp"
 #include "study/recommend.hpp"
 
 namespace asperity::app {

@@ -1,5 +1,5 @@
 // `asperity report DIR`: the particle-geometry study's report (Markdown + HTML with matplotlib
-// charts) from the tables `asperity study` wrote, by validation/report/study_report.py.
+// charts) from the tables `asperity study` wrote, by tools/report/study_report.py.
 #include <spawn.h>
 #include <sys/wait.h>
 
@@ -11,7 +11,7 @@
 
 #include "app/commands.hpp"
 #include "app/out_folder.hpp"
-#include "core/error.hpp"
+#include "solver/core/error.hpp"
 
 extern char** environ;
 
@@ -81,7 +81,7 @@ void add_report_command(CLI::App& app, Action& action) {
       const fs::path out = args->out.empty() ? args->study : args->out;
       check_out_folder(out);
       fs::path stability = args->stability;
-      // The script is ROOT/validation/report/study_report.py; the reports are ROOT/reports.
+      // The script is ROOT/tools/report/study_report.py; the reports are ROOT/reports.
       const fs::path reports =
           fs::path(kReportScript).parent_path().parent_path().parent_path() / "reports";
       if (stability.empty() && fs::is_directory(args->study / "stability"))
@@ -95,7 +95,7 @@ void add_report_command(CLI::App& app, Action& action) {
                                        out.string()};
       if (!stability.empty()) argv.insert(argv.end(), {"--stability", stability.string()});
       if (!yade.empty()) argv.insert(argv.end(), {"--yade", yade.string()});
-      // The penalty-sensitivity runs (validation/report/penalty_sensitivity.sh), when present.
+      // The penalty-sensitivity runs (tools/report/penalty_sensitivity.sh), when present.
       const fs::path penalty = reports / "study" / "penalty";
       if (fs::exists(penalty / "penalty_sensitivity.csv")) {
         argv.insert(argv.end(), {"--penalty", penalty.string()});

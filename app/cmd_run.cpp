@@ -5,9 +5,9 @@
 
 #include "app/commands.hpp"
 #include "app/out_folder.hpp"
-#include "core/error.hpp"
-#include "run/run_scene.hpp"
-#include "scene/scene.hpp"
+#include "solver/core/error.hpp"
+#include "solver/run/run_scene.hpp"
+#include "solver/scene/scene.hpp"
 
 namespace asperity::app {
 namespace {

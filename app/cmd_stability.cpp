@@ -6,9 +6,9 @@
 
 #include "app/commands.hpp"
 #include "app/out_folder.hpp"
-#include "core/error.hpp"
-#include "run/stability_sweep.hpp"
-#include "scene/scene.hpp"
+#include "solver/core/error.hpp"
+#include "solver/run/stability_sweep.hpp"
+#include "solver/scene/scene.hpp"
 
 namespace asperity::app {
 

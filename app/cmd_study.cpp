@@ -10,7 +10,7 @@
 #include "app/commands.hpp"
 #include "app/out_folder.hpp"
 #include "cluster/world.hpp"
-#include "core/error.hpp"
+#include "solver/core/error.hpp"
 #include "study/study_def.hpp"
 #include "study/study_run.hpp"
 #include "study/study_tables.hpp"

@@ -7,8 +7,8 @@
 
 #include "app/commands.hpp"
 #include "cluster/world.hpp"
-#include "core/error.hpp"
-#include "core/interrupt.hpp"
+#include "solver/core/error.hpp"
+#include "solver/core/interrupt.hpp"
 
 namespace {
 

@@ -5,7 +5,7 @@
 
 #include <string>
 
-#include "core/error.hpp"
+#include "solver/core/error.hpp"
 
 namespace asperity::app {
 namespace {

@@ -4,7 +4,7 @@
 
 #include <benchmark/benchmark.h>
 
-#include "dem/sphere_world.hpp"
+#include "solver/dem/sphere_world.hpp"
 
 namespace {
 

@@ -9,7 +9,7 @@
 # CPU on the loaded machine, 6 s of it the two set-up benchmarks (meshing included).
 asperity_benchmark(bench_fem ${CMAKE_CURRENT_LIST_DIR}/fem_bench.cpp)
 target_link_libraries(bench_fem PRIVATE asperity_fdem)
-target_include_directories(bench_fem PRIVATE ${ASPERITY_SOURCE_DIR}/tests/fdem)
+target_link_libraries(bench_fem PRIVATE asperity_scenes)
 if(TARGET asperity_geometry)
   target_link_libraries(bench_fem PRIVATE asperity_geometry)
   target_link_libraries(bench_fem PRIVATE asperity_io)

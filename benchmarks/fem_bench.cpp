@@ -4,14 +4,14 @@
 #include <algorithm>
 #include <ctime>
 
-#include "contact/munjiza_potential.hpp"
-#include "fdem/time_step.hpp"
-#include "fdem_scenes.hpp"
-#include "fem/tet_elements.hpp"
+#include "scenes/fdem_scenes.hpp"
+#include "solver/contact/munjiza_potential.hpp"
+#include "solver/fdem/time_step.hpp"
+#include "solver/fem/tet_elements.hpp"
 #if ASPERITY_HAVE_GEOMETRY
-#include "geometry/mesh_pipeline.hpp"
-#include "geometry/random_particle.hpp"
-#include "io/json_file.hpp"
+#include "solver/geometry/mesh_pipeline.hpp"
+#include "solver/geometry/random_particle.hpp"
+#include "solver/io/json_file.hpp"
 #endif
 
 #include <string>

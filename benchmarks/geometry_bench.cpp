@@ -2,10 +2,10 @@
 // tetrahedralization of the result (issue 3, "Performance"); one core (the code is serial).
 #include <benchmark/benchmark.h>
 
-#include "geometry/random_particle.hpp"
-#include "geometry/simplify_edge_collapse.hpp"
-#include "geometry/tet_quality.hpp"
-#include "geometry/tetrahedralize.hpp"
+#include "solver/geometry/random_particle.hpp"
+#include "solver/geometry/simplify_edge_collapse.hpp"
+#include "solver/geometry/tet_quality.hpp"
+#include "solver/geometry/tetrahedralize.hpp"
 
 namespace {
 using namespace asperity;

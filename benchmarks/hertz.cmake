@@ -10,7 +10,7 @@ if(TARGET asperity_geometry)
   add_executable(bench_hertz ${CMAKE_CURRENT_LIST_DIR}/hertz_bench.cpp)
   target_link_libraries(bench_hertz PRIVATE benchmark::benchmark asperity_warnings asperity_fdem
                         asperity_geometry)
-  target_include_directories(bench_hertz PRIVATE ${ASPERITY_SOURCE_DIR}/tests/fdem)
+  target_link_libraries(bench_hertz PRIVATE asperity_scenes)
   add_test(NAME bench_hertz_smoke
            COMMAND bench_hertz --benchmark_filter=^HertzBlock/graded/aR:0.150/s:2.000/)
   set_tests_properties(bench_hertz_smoke PROPERTIES LABELS benchmark)

@@ -1,9 +1,9 @@
 // The Hertz convergence levels (issue 11, item 2) as benchmarks: the CPU of one impact of the
 // deformable sphere on a fixed block, or of two spheres head-on, by contact size a/R and
-// refinement s (tests/fdem/hertz_series.hpp), with its errors against Hertz as counters. The
+// refinement s (scenes/hertz_series.hpp), with its errors against Hertz as counters. The
 // finest gate levels are HertzBlock/graded/aR:0.107/s:1.000 and HertzPair/graded/aR:0.150/s:1.000
 // (the issue asks for under 60 s of CPU on one core); the whole set is the table of
-// reports/fem/hertz_convergence.md (benchmarks/hertz_convergence_table.py).
+// reports/fem/hertz_convergence.md (tools/report/hertz_convergence_table.py).
 #include <benchmark/benchmark.h>
 
 #include <cmath>
@@ -11,7 +11,7 @@
 #include <ctime>
 #include <string>
 
-#include "hertz_series.hpp"
+#include "scenes/hertz_series.hpp"
 
 namespace asperity {
 namespace {

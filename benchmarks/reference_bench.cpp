@@ -3,7 +3,7 @@
 // and one impact from the cached law (every later call). Counters: elements, nodes.
 #include <benchmark/benchmark.h>
 
-#include "finite_sphere.hpp"
+#include "validation/reference/finite_sphere.hpp"
 
 namespace asperity::reference {
 namespace {

@@ -4,6 +4,6 @@
 if(TARGET asperity_geometry)
   asperity_benchmark(bench_rigid ${CMAKE_CURRENT_LIST_DIR}/rigid_bench.cpp)
   target_link_libraries(bench_rigid PRIVATE asperity_fdem asperity_geometry)
-  target_include_directories(bench_rigid PRIVATE ${ASPERITY_SOURCE_DIR}/tests/fdem)
+  target_link_libraries(bench_rigid PRIVATE asperity_scenes)
   target_compile_definitions(bench_rigid PRIVATE ASPERITY_SOURCE_DIR="${ASPERITY_SOURCE_DIR}")
 endif()

@@ -8,11 +8,11 @@
 #include <string>
 #include <vector>
 
-#include "contact/overlap_volume.hpp"
-#include "fdem/broad_phase.hpp"
-#include "geometry/mesh_pipeline.hpp"
-#include "geometry/random_particle.hpp"
-#include "volume_scenes.hpp"
+#include "scenes/volume_scenes.hpp"
+#include "solver/contact/overlap_volume.hpp"
+#include "solver/fdem/broad_phase.hpp"
+#include "solver/geometry/mesh_pipeline.hpp"
+#include "solver/geometry/random_particle.hpp"
 
 namespace asperity {
 namespace {

@@ -10,11 +10,11 @@
 #include <filesystem>
 #include <fstream>
 
-#include "geometry/mass_properties.hpp"
-#include "geometry/random_particle.hpp"
-#include "geometry/write_mesh.hpp"
-#include "run/run_scene.hpp"
-#include "scene/scene.hpp"
+#include "solver/geometry/mass_properties.hpp"
+#include "solver/geometry/random_particle.hpp"
+#include "solver/geometry/write_mesh.hpp"
+#include "solver/run/run_scene.hpp"
+#include "solver/scene/scene.hpp"
 
 namespace asperity {
 namespace {

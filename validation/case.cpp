@@ -1,16 +1,16 @@
 // Validation cases: loading, analytic references, running and checking.
-#include "case.hpp"
+#include "validation/case.hpp"
 
 #include <algorithm>
 #include <cmath>
 #include <numbers>
 #include <sstream>
 
-#include "contact/hertz_impact.hpp"
-#include "core/error.hpp"
-#include "io/json_file.hpp"
-#include "run/summary_keys.hpp"
-#include "scene/scene_json.hpp"
+#include "solver/contact/hertz_impact.hpp"
+#include "solver/core/error.hpp"
+#include "solver/io/json_file.hpp"
+#include "solver/run/summary_keys.hpp"
+#include "solver/scene/scene_json.hpp"
 
 namespace asperity::validation {
 namespace {

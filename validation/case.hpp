@@ -9,9 +9,9 @@
 
 #include <nlohmann/json.hpp>
 
-#include "run/run_scene.hpp"
-#include "run/stability_sweep.hpp"
-#include "scene/scene.hpp"
+#include "solver/run/run_scene.hpp"
+#include "solver/run/stability_sweep.hpp"
+#include "solver/scene/scene.hpp"
 
 namespace asperity::validation {
 

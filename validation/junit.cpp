@@ -1,5 +1,5 @@
 // JUnit XML writer (the schema's common subset that GitLab, GitHub actions and Jenkins read).
-#include "junit.hpp"
+#include "validation/junit.hpp"
 
 #include <unistd.h>
 

@@ -1,5 +1,5 @@
 // `asperity validate`'s work (validate.hpp).
-#include "validate.hpp"
+#include "validation/validate.hpp"
 
 #include <algorithm>
 #include <chrono>
@@ -13,37 +13,28 @@
 
 #include "cluster/task_pool.hpp"
 #include "cluster/world.hpp"
-#include "core/error.hpp"
-#include "io/atomic_file.hpp"
-#include "junit.hpp"
-#include "peers/peer.hpp"
-#include "run/run_scene.hpp"
-#include "run/stability_sweep.hpp"
-#include "validate_report.hpp"
+#include "solver/core/error.hpp"
+#include "solver/io/atomic_file.hpp"
+#include "solver/run/run_scene.hpp"
+#include "solver/run/stability_sweep.hpp"
+#include "validation/junit.hpp"
+#include "validation/validate_report.hpp"
 
 namespace asperity::validation {
 namespace {
 namespace fs = std::filesystem;
 using OJson = nlohmann::ordered_json;
 
-// The case run by asperity (its outputs written) or by the solver (it wrote them); a solver that
-// fails fails the case, with its one-line reason on stderr.
-CaseResult solve(const CaseDef& c, const peers::CaseSolver& solver, const fs::path& dir) {
-  if (!solver.any()) {
-    CaseResult r = run_case(c);
-    if (r.sweep) {
-      run::write_stability(*r.sweep, dir);
-    } else {
-      run::write_outputs(r.run, dir);
-    }
-    return r;
+// The case run by asperity (its outputs written) or by the other solver (it wrote them).
+CaseResult solve(const CaseDef& c, const std::optional<OtherSolver>& solver, const fs::path& dir) {
+  if (solver) return solver->solve(c, dir);
+  CaseResult r = run_case(c);
+  if (r.sweep) {
+    run::write_stability(*r.sweep, dir);
+  } else {
+    run::write_outputs(r.run, dir);
   }
-  try {
-    return check_case(c, peers::solve_case(solver, c, dir));
-  } catch (const peers::PeerFailure& e) {
-    std::fprintf(stderr, "asperity: %s\n", e.what());
-    return failed_case(c, e.what());
-  }
+  return r;
 }
 
 double cpu_of(const CaseResult& r) {
@@ -84,7 +75,7 @@ OJson junit_rows(const CaseResult& r) {
 
 // One case: solved, outputs and check.json under DIR/cases/NAME/; the check, the run's CPU and
 // the case's JUnit rows as the payload.
-cluster::TaskReport run_one(const CaseDef& def, const peers::CaseSolver& solver,
+cluster::TaskReport run_one(const CaseDef& def, const std::optional<OtherSolver>& solver,
                             const fs::path& out) try {
   const fs::path dir = out / "cases" / def.name;
   const CaseResult r = solve(def, solver, dir);
@@ -213,11 +204,8 @@ std::vector<CaseDef> load_cases(const std::vector<fs::path>& paths) {
 }
 
 int validate_cases(const std::vector<CaseDef>& cases, const ValidateOptions& o) {
-  if (o.solver.any()) peers::check_solver(o.solver, cases);
   if (o.junit) fs::remove(*o.junit);
-  const std::string solved_by = o.solver.external() ? "the command `" + o.solver.command + "`"
-                                : o.solver.any()    ? "the peer " + o.solver.peer
-                                                    : "asperity";
+  const std::string solved_by = o.solver ? o.solver->name : "asperity";
   cluster::World world;
   return world.guard([&] {
     if (world.root()) fs::create_directories(o.out / "cases");

@@ -5,11 +5,12 @@
 #pragma once
 
 #include <filesystem>
+#include <functional>
 #include <optional>
+#include <string>
 #include <vector>
 
-#include "case.hpp"
-#include "peers/external_solver.hpp"
+#include "validation/case.hpp"
 
 namespace asperity::validation {
 
@@ -17,17 +18,24 @@ namespace asperity::validation {
 // one name (each writes into a folder of its name), is an InputError before anything runs.
 std::vector<CaseDef> load_cases(const std::vector<std::filesystem::path>& paths);
 
+// Who solves the cases when asperity does not (a peer or a --solver-cmd: peers/external_solver.hpp
+// makes one): `solve` runs a case into DIR/cases/NAME/ and checks it, a solver's failure being a
+// failed case; `name` is who the report says solved them.
+struct OtherSolver {
+  std::string name;
+  std::function<CaseResult(const CaseDef&, const std::filesystem::path& dir)> solve;
+};
+
 struct ValidateOptions {
-  std::filesystem::path out;  // DIR: report.md, results.csv, validation.json, cases/NAME/
-  int jobs = 1;               // worker threads per process
-  peers::CaseSolver solver;   // none: asperity solves
+  std::filesystem::path out;          // DIR: report.md, results.csv, validation.json, cases/NAME/
+  int jobs = 1;                       // worker threads per process
+  std::optional<OtherSolver> solver;  // none: asperity solves
   std::optional<std::filesystem::path> junit;
   bool quiet = false;  // only errors on stderr
 };
 
-// Checks the solver against the cases, then solves and checks every case and writes the
-// report. Returns the number of cases that failed; an error a case raised is raised again, on
-// every rank alike.
+// Solves and checks every case and writes the report. Returns the number of cases that failed; an
+// error a case raised is raised again, on every rank alike.
 int validate_cases(const std::vector<CaseDef>& cases, const ValidateOptions& options);
 
 }  // namespace asperity::validation

@@ -1,10 +1,10 @@
 // The report of `asperity validate` (validate_report.hpp).
-#include "validate_report.hpp"
+#include "validation/validate_report.hpp"
 
 #include <sstream>
 
-#include "io/atomic_file.hpp"
-#include "io/csv.hpp"
+#include "solver/io/atomic_file.hpp"
+#include "solver/io/csv.hpp"
 
 namespace asperity::validation {
 namespace {

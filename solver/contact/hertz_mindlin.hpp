@@ -7,9 +7,9 @@
 
 #include <cmath>
 
-#include "contact/hertz.hpp"
-#include "contact/tangential_spring.hpp"
-#include "core/vec.hpp"
+#include "solver/contact/hertz.hpp"
+#include "solver/contact/tangential_spring.hpp"
+#include "solver/core/vec.hpp"
 
 namespace asperity::contact {
 

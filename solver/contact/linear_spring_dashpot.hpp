@@ -4,7 +4,7 @@
 #include <algorithm>
 #include <cmath>
 
-#include "contact/hertz.hpp"
+#include "solver/contact/hertz.hpp"
 
 namespace asperity::contact {
 

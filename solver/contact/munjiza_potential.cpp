@@ -1,5 +1,5 @@
 // Munjiza's distributed-potential contact of two tetrahedra: clipping and exact integration.
-#include "contact/munjiza_potential.hpp"
+#include "solver/contact/munjiza_potential.hpp"
 
 #include <algorithm>
 #include <cmath>

@@ -36,7 +36,7 @@
 
 #include <Eigen/Core>
 
-#include "core/vec.hpp"
+#include "solver/core/vec.hpp"
 
 namespace asperity::contact {
 

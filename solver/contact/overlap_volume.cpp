@@ -1,6 +1,6 @@
 // Overlap of two polyhedra: a surface triangle of one body clipped by a tetrahedron of the other,
 // integrated exactly (contact/overlap_volume.hpp).
-#include "contact/overlap_volume.hpp"
+#include "solver/contact/overlap_volume.hpp"
 
 #include <Eigen/Geometry>
 

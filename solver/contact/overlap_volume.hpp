@@ -27,8 +27,8 @@
 
 #include <array>
 
-#include "contact/munjiza_potential.hpp"
-#include "core/vec.hpp"
+#include "solver/contact/munjiza_potential.hpp"
+#include "solver/core/vec.hpp"
 
 namespace asperity::contact {
 

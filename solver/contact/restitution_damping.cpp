@@ -1,5 +1,5 @@
 // Numerical inverse of the restitution of a clipped, damped normal contact (see header).
-#include "contact/restitution_damping.hpp"
+#include "solver/contact/restitution_damping.hpp"
 
 #include <cmath>
 #include <map>

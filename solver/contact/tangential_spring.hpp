@@ -6,7 +6,7 @@
 #include <algorithm>
 #include <cmath>
 
-#include "core/vec.hpp"
+#include "solver/core/vec.hpp"
 
 namespace asperity::contact {
 

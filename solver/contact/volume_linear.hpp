@@ -12,7 +12,7 @@
 // contact not exactly conservative. Exponents of F(δ): vertex 3, edge 2, face 1.
 #pragma once
 
-#include "core/vec.hpp"
+#include "solver/core/vec.hpp"
 
 namespace asperity::contact {
 

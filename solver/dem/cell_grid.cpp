@@ -1,5 +1,5 @@
 // Uniform-grid neighbour search (counting sort into cells, then the 27 neighbouring cells).
-#include "dem/cell_grid.hpp"
+#include "solver/dem/cell_grid.hpp"
 
 #include <algorithm>
 #include <cmath>

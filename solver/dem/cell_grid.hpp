@@ -6,7 +6,7 @@
 
 #include <Eigen/Core>
 
-#include "dem/sphere_world.hpp"
+#include "solver/dem/sphere_world.hpp"
 
 namespace asperity::dem {
 

@@ -1,16 +1,16 @@
 // Rigid-sphere DEM step: broad phase (Verlet list on a cell grid) → contact forces → integrate.
-#include "dem/sphere_world.hpp"
+#include "solver/dem/sphere_world.hpp"
 
 #include <algorithm>
 #include <cmath>
 
-#include "contact/hertz.hpp"
-#include "contact/hertz_mindlin.hpp"
-#include "contact/linear_spring_dashpot.hpp"
-#include "contact/tangential_spring.hpp"
-#include "core/error.hpp"
-#include "core/ticks.hpp"
-#include "dem/cell_grid.hpp"
+#include "solver/contact/hertz.hpp"
+#include "solver/contact/hertz_mindlin.hpp"
+#include "solver/contact/linear_spring_dashpot.hpp"
+#include "solver/contact/tangential_spring.hpp"
+#include "solver/core/error.hpp"
+#include "solver/core/ticks.hpp"
+#include "solver/dem/cell_grid.hpp"
 
 namespace asperity::dem {
 namespace {

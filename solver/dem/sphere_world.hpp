@@ -7,12 +7,12 @@
 
 #include <Eigen/Core>
 
-#include "contact/restitution_damping.hpp"
-#include "core/body_contacts.hpp"
-#include "core/energy.hpp"
-#include "core/material.hpp"
-#include "core/profile.hpp"
-#include "core/vec.hpp"
+#include "solver/contact/restitution_damping.hpp"
+#include "solver/core/body_contacts.hpp"
+#include "solver/core/energy.hpp"
+#include "solver/core/material.hpp"
+#include "solver/core/profile.hpp"
+#include "solver/core/vec.hpp"
 
 namespace asperity::dem {
 

@@ -1,5 +1,5 @@
 // Critical-step prediction for the sphere world (formulas and sources in the header).
-#include "dem/time_step.hpp"
+#include "solver/dem/time_step.hpp"
 
 #include <algorithm>
 #include <cmath>
@@ -7,8 +7,8 @@
 #include <numbers>
 #include <vector>
 
-#include "contact/hertz_impact.hpp"
-#include "core/central_difference.hpp"
+#include "solver/contact/hertz_impact.hpp"
+#include "solver/core/central_difference.hpp"
 
 namespace asperity::dem {
 

@@ -3,7 +3,7 @@
 
 #include <string>
 
-#include "dem/sphere_world.hpp"
+#include "solver/dem/sphere_world.hpp"
 
 namespace asperity::dem {
 

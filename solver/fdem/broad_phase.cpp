@@ -1,5 +1,5 @@
 // Broad phase: body boxes first, then sort and sweep between the two bodies of each pair.
-#include "fdem/broad_phase.hpp"
+#include "solver/fdem/broad_phase.hpp"
 
 #include <algorithm>
 #include <numeric>

@@ -6,7 +6,7 @@
 
 #include <Eigen/Core>
 
-#include "fdem/fdem_world.hpp"
+#include "solver/fdem/fdem_world.hpp"
 
 namespace asperity::fdem {
 

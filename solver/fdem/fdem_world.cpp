@@ -1,6 +1,6 @@
 // FEM/DEM step: broad phase → contact (Munjiza potential + Coulomb friction) → internal forces
 // (neo-Hookean tetrahedra) → integrate (central differences; rigid bodies in 6 DOF).
-#include "fdem/fdem_world.hpp"
+#include "solver/fdem/fdem_world.hpp"
 
 #include <algorithm>
 #include <array>
@@ -10,15 +10,15 @@
 #include <sstream>
 #include <tuple>
 
-#include "contact/munjiza_potential.hpp"
-#include "contact/overlap_volume.hpp"
-#include "contact/tangential_spring.hpp"
-#include "contact/volume_hertz.hpp"
-#include "contact/volume_linear.hpp"
-#include "core/error.hpp"
-#include "core/ticks.hpp"
-#include "fdem/broad_phase.hpp"
-#include "fdem/time_step.hpp"
+#include "solver/contact/munjiza_potential.hpp"
+#include "solver/contact/overlap_volume.hpp"
+#include "solver/contact/tangential_spring.hpp"
+#include "solver/contact/volume_hertz.hpp"
+#include "solver/contact/volume_linear.hpp"
+#include "solver/core/error.hpp"
+#include "solver/core/ticks.hpp"
+#include "solver/fdem/broad_phase.hpp"
+#include "solver/fdem/time_step.hpp"
 
 namespace asperity::fdem {
 namespace {

@@ -8,15 +8,15 @@
 
 #include <Eigen/Core>
 
-#include "contact/munjiza_potential.hpp"
-#include "contact/overlap_volume.hpp"
-#include "core/body_contacts.hpp"
-#include "core/energy.hpp"
-#include "core/material.hpp"
-#include "core/mesh.hpp"
-#include "core/profile.hpp"
-#include "core/vec.hpp"
-#include "fem/tet_elements.hpp"
+#include "solver/contact/munjiza_potential.hpp"
+#include "solver/contact/overlap_volume.hpp"
+#include "solver/core/body_contacts.hpp"
+#include "solver/core/energy.hpp"
+#include "solver/core/material.hpp"
+#include "solver/core/mesh.hpp"
+#include "solver/core/profile.hpp"
+#include "solver/core/vec.hpp"
+#include "solver/fem/tet_elements.hpp"
 
 namespace asperity::fdem {
 
@@ -129,7 +129,7 @@ struct BodyOverlap {
   Vec3 spring = Vec3::Zero();           // friction: the tangential spring force on a, N
 };
 
-#include "contact/overlap_volume.hpp"
+#include "solver/contact/overlap_volume.hpp"
 struct World {
   // Nodes, structure of arrays. Fixed nodes have mass 0 and inverse mass 0.
   Eigen::Matrix3Xd x, v, f;    // m, m/s, N (contact + internal, without gravity)

@@ -1,10 +1,10 @@
 // Runaway penetration (fdem/runaway_penetration.hpp).
-#include "fdem/runaway_penetration.hpp"
+#include "solver/fdem/runaway_penetration.hpp"
 
 #include <algorithm>
 
-#include "contact/munjiza_potential.hpp"
-#include "core/format.hpp"
+#include "solver/contact/munjiza_potential.hpp"
+#include "solver/core/format.hpp"
 
 namespace asperity::fdem {
 

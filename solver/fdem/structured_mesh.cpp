@@ -1,5 +1,5 @@
 // Structured tetrahedral meshes: boxes and a cube-mapped ball.
-#include "fdem/structured_mesh.hpp"
+#include "solver/fdem/structured_mesh.hpp"
 
 #include <algorithm>
 #include <array>
@@ -7,7 +7,7 @@
 #include <map>
 #include <vector>
 
-#include "core/error.hpp"
+#include "solver/core/error.hpp"
 
 namespace asperity::fdem {
 

@@ -2,8 +2,8 @@
 // cube-mapped ball (tests and benchmarks without the geometry pipeline).
 #pragma once
 
-#include "core/mesh.hpp"
-#include "core/vec.hpp"
+#include "solver/core/mesh.hpp"
+#include "solver/core/vec.hpp"
 
 namespace asperity::fdem {
 

@@ -1,5 +1,5 @@
 // Predicted critical step of an FEM/DEM world (formulas in time_step.hpp).
-#include "fdem/time_step.hpp"
+#include "solver/fdem/time_step.hpp"
 
 #include <algorithm>
 #include <array>
@@ -11,8 +11,8 @@
 
 #include <Eigen/Eigenvalues>
 
-#include "contact/volume_hertz.hpp"
-#include "core/central_difference.hpp"
+#include "solver/contact/volume_hertz.hpp"
+#include "solver/core/central_difference.hpp"
 
 namespace asperity::fdem {
 

@@ -4,7 +4,7 @@
 #include <string>
 #include <vector>
 
-#include "fdem/fdem_world.hpp"
+#include "solver/fdem/fdem_world.hpp"
 
 namespace asperity::fdem {
 

@@ -21,7 +21,7 @@
 
 #include <cmath>
 
-#include "fem/neo_hookean_tet.hpp"
+#include "solver/fem/neo_hookean_tet.hpp"
 
 namespace asperity::fem {
 

@@ -20,8 +20,8 @@
 
 #include <Eigen/Core>
 
-#include "core/vec.hpp"
-#include "fem/log_series.hpp"
+#include "solver/core/vec.hpp"
+#include "solver/fem/log_series.hpp"
 
 namespace asperity::fem {
 

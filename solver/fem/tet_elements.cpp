@@ -1,5 +1,5 @@
 // Element loop of the deformable bodies: plain arrays, one kernel call per element.
-#include "fem/tet_elements.hpp"
+#include "solver/fem/tet_elements.hpp"
 
 #include <algorithm>
 #include <cmath>
@@ -8,8 +8,8 @@
 
 #include <Eigen/Eigenvalues>
 
-#include "core/central_difference.hpp"
-#include "core/error.hpp"
+#include "solver/core/central_difference.hpp"
+#include "solver/core/error.hpp"
 
 namespace asperity::fem {
 

@@ -7,9 +7,9 @@
 
 #include <Eigen/Core>
 
-#include "core/material.hpp"
-#include "fem/linear_elastic_tet.hpp"
-#include "fem/neo_hookean_tet.hpp"
+#include "solver/core/material.hpp"
+#include "solver/fem/linear_elastic_tet.hpp"
+#include "solver/fem/neo_hookean_tet.hpp"
 
 namespace asperity::fem {
 

@@ -5,9 +5,9 @@
 
 #include <cmath>
 
-#include "core/material.hpp"
-#include "core/vec.hpp"
-#include "fem/neo_hookean_tet.hpp"
+#include "solver/core/material.hpp"
+#include "solver/core/vec.hpp"
+#include "solver/fem/neo_hookean_tet.hpp"
 
 namespace asperity::fem {
 

@@ -9,7 +9,7 @@
 #include <CGAL/Polygon_mesh_processing/polygon_soup_to_polygon_mesh.h>
 #include <CGAL/Surface_mesh.h>
 
-#include "core/mesh.hpp"
+#include "solver/core/mesh.hpp"
 
 namespace asperity::geometry::cgal {
 

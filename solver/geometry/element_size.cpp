@@ -1,6 +1,6 @@
 // Element size apart from surface geometry: the size field, in-plane longest-edge bisection of the
 // surface, and the tetrahedron-count estimate that guards both.
-#include "geometry/element_size.hpp"
+#include "solver/geometry/element_size.hpp"
 
 #include <algorithm>
 #include <array>
@@ -12,7 +12,7 @@
 #include <utility>
 #include <vector>
 
-#include "core/error.hpp"
+#include "solver/core/error.hpp"
 
 namespace asperity::geometry {
 

@@ -6,8 +6,8 @@
 #include <limits>
 #include <string>
 
-#include "core/mesh.hpp"
-#include "core/vec.hpp"
+#include "solver/core/mesh.hpp"
+#include "solver/core/vec.hpp"
 
 namespace asperity::geometry {
 

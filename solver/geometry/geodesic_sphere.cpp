@@ -1,5 +1,5 @@
 // Geodesic icosphere (used by random_particle and by the convergence tests).
-#include "geometry/geodesic_sphere.hpp"
+#include "solver/geometry/geodesic_sphere.hpp"
 
 #include <algorithm>
 #include <array>
@@ -7,8 +7,8 @@
 #include <map>
 #include <vector>
 
-#include "core/error.hpp"
-#include "core/vec.hpp"
+#include "solver/core/error.hpp"
+#include "solver/core/vec.hpp"
 
 namespace asperity::geometry {
 namespace {

@@ -1,7 +1,7 @@
 // The geodesic icosphere: a closed, outward, nearly uniform triangulation of the unit sphere.
 #pragma once
 
-#include "core/mesh.hpp"
+#include "solver/core/mesh.hpp"
 
 namespace asperity::geometry {
 

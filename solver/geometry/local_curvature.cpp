@@ -1,5 +1,5 @@
 // The principal radii at a surface's lowest vertex (local_curvature.hpp).
-#include "geometry/local_curvature.hpp"
+#include "solver/geometry/local_curvature.hpp"
 
 #include <cmath>
 #include <limits>

@@ -5,8 +5,8 @@
 // contact behaves, to first order in its ellipticity, like a circular one of that radius).
 #pragma once
 
-#include "core/mesh.hpp"
-#include "core/vec.hpp"
+#include "solver/core/mesh.hpp"
+#include "solver/core/vec.hpp"
 
 namespace asperity::geometry {
 

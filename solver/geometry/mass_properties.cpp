@@ -1,5 +1,5 @@
 // Exact polyhedral mass properties (issue 3, "Mass properties"); formulas in the header.
-#include "geometry/mass_properties.hpp"
+#include "solver/geometry/mass_properties.hpp"
 
 #include <algorithm>
 #include <cmath>
@@ -7,7 +7,7 @@
 
 #include <Eigen/Eigenvalues>
 
-#include "core/error.hpp"
+#include "solver/core/error.hpp"
 
 namespace asperity::geometry {
 

@@ -2,8 +2,8 @@
 // size and shape numbers derived from them.
 #pragma once
 
-#include "core/mesh.hpp"
-#include "core/vec.hpp"
+#include "solver/core/mesh.hpp"
+#include "solver/core/vec.hpp"
 
 namespace asperity::geometry {
 

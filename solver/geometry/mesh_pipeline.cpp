@@ -1,12 +1,12 @@
 // The geometry pipeline for one particle (issue 3, `asperity mesh`).
-#include "geometry/mesh_pipeline.hpp"
+#include "solver/geometry/mesh_pipeline.hpp"
 
 #include <chrono>
 #include <stdexcept>
 
-#include "core/error.hpp"
-#include "geometry/simplify_edge_collapse.hpp"
-#include "geometry/write_mesh.hpp"
+#include "solver/core/error.hpp"
+#include "solver/geometry/simplify_edge_collapse.hpp"
+#include "solver/geometry/write_mesh.hpp"
 
 namespace asperity::geometry {
 namespace {

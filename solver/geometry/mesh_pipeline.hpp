@@ -8,13 +8,13 @@
 
 #include <nlohmann/json.hpp>
 
-#include "core/mesh.hpp"
-#include "geometry/mass_properties.hpp"
-#include "geometry/read_mesh.hpp"
-#include "geometry/repair_mesh.hpp"
-#include "geometry/shape_metrics.hpp"
-#include "geometry/tet_quality.hpp"
-#include "geometry/tetrahedralize.hpp"
+#include "solver/core/mesh.hpp"
+#include "solver/geometry/mass_properties.hpp"
+#include "solver/geometry/read_mesh.hpp"
+#include "solver/geometry/repair_mesh.hpp"
+#include "solver/geometry/shape_metrics.hpp"
+#include "solver/geometry/tet_quality.hpp"
+#include "solver/geometry/tetrahedralize.hpp"
 
 namespace asperity::geometry {
 

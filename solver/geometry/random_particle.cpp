@@ -1,6 +1,6 @@
 // Generated rock-like particles (issue 3, item 7); the construction and why it is valid are in
 // the header.
-#include "geometry/random_particle.hpp"
+#include "solver/geometry/random_particle.hpp"
 
 #include <algorithm>
 #include <array>
@@ -9,10 +9,10 @@
 #include <sstream>
 #include <vector>
 
-#include "core/error.hpp"
-#include "geometry/geodesic_sphere.hpp"
-#include "geometry/mass_properties.hpp"
-#include "geometry/splitmix64.hpp"
+#include "solver/core/error.hpp"
+#include "solver/geometry/geodesic_sphere.hpp"
+#include "solver/geometry/mass_properties.hpp"
+#include "solver/geometry/splitmix64.hpp"
 
 namespace asperity::geometry {
 namespace {

@@ -4,7 +4,7 @@
 #include <cstdint>
 #include <string>
 
-#include "core/mesh.hpp"
+#include "solver/core/mesh.hpp"
 
 namespace asperity::geometry {
 

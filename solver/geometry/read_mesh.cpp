@@ -1,7 +1,7 @@
 // Reading surface meshes: OFF and PLY with our own bounded readers (read_off.cpp, read_ply.cpp),
 // STL and OBJ with CGAL's stream I/O; the checks before and after turn every kind of bad file into
 // one line naming the file and the defect (issue 3, "Reading"; docs/hostile.md).
-#include "geometry/read_mesh.hpp"
+#include "solver/geometry/read_mesh.hpp"
 
 #include <algorithm>
 #include <array>
@@ -19,10 +19,10 @@
 #include <CGAL/IO/OBJ.h>
 #include <CGAL/IO/STL.h>
 
-#include "core/error.hpp"
-#include "geometry/mesh_text.hpp"
-#include "geometry/read_off.hpp"
-#include "geometry/read_ply.hpp"
+#include "solver/core/error.hpp"
+#include "solver/geometry/mesh_text.hpp"
+#include "solver/geometry/read_off.hpp"
+#include "solver/geometry/read_ply.hpp"
 
 namespace asperity::geometry {
 namespace {

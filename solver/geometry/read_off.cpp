@@ -4,15 +4,15 @@
 // 2) however the header had been pre-checked. Here nothing is allocated for a count before the
 // bytes that must hold it are known to exist. Format: Geomview's OFF description
 // (http://www.geomview.org/docs/html/OFF.html), the ASCII form.
-#include "geometry/read_off.hpp"
+#include "solver/geometry/read_off.hpp"
 
 #include <cmath>
 #include <cstdint>
 #include <string>
 #include <vector>
 
-#include "core/error.hpp"
-#include "geometry/mesh_text.hpp"
+#include "solver/core/error.hpp"
+#include "solver/geometry/mesh_text.hpp"
 
 namespace asperity::geometry {
 namespace {

@@ -5,7 +5,7 @@
 // parsed into a layout first, the layout's minimum size is checked against the bytes after the
 // header, and every list count against the bytes left before anything is allocated for it.
 // Format: Greg Turk's PLY description (http://paulbourke.net/dataformats/ply/).
-#include "geometry/read_ply.hpp"
+#include "solver/geometry/read_ply.hpp"
 
 #include <bit>
 #include <cmath>
@@ -16,8 +16,8 @@
 #include <utility>
 #include <vector>
 
-#include "core/error.hpp"
-#include "geometry/mesh_text.hpp"
+#include "solver/core/error.hpp"
+#include "solver/geometry/mesh_text.hpp"
 
 namespace asperity::geometry {
 namespace {

@@ -6,7 +6,7 @@
 #include <string>
 #include <string_view>
 
-#include "geometry/read_mesh.hpp"
+#include "solver/geometry/read_mesh.hpp"
 
 namespace asperity::geometry {
 

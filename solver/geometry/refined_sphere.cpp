@@ -1,8 +1,8 @@
 // A sphere refined towards its strike point (refined_sphere.hpp).
-#include "geometry/refined_sphere.hpp"
+#include "solver/geometry/refined_sphere.hpp"
 
-#include "geometry/element_size.hpp"
-#include "geometry/geodesic_sphere.hpp"
+#include "solver/geometry/element_size.hpp"
+#include "solver/geometry/geodesic_sphere.hpp"
 
 namespace asperity::geometry {
 

@@ -1,9 +1,9 @@
-// A sphere refined towards its strike point: the Hertz scenes' particle (tests/fdem/
-// hertz_spheres.hpp) and the study's sphere-like particle (tests/study/test_sphere_study.cpp).
+// A sphere refined towards its strike point: the Hertz scenes' particle (scenes/hertz_spheres.hpp)
+// and the study's sphere-like particle (tests/study/test_sphere_study.cpp).
 #pragma once
 
-#include "core/mesh.hpp"
-#include "core/vec.hpp"
+#include "solver/core/mesh.hpp"
+#include "solver/core/vec.hpp"
 
 namespace asperity::geometry {
 

@@ -1,5 +1,5 @@
 // Short-edge collapse after simplification (geometry/remove_short_edges.hpp: what and why).
-#include "geometry/remove_short_edges.hpp"
+#include "solver/geometry/remove_short_edges.hpp"
 
 #include <algorithm>
 #include <array>
@@ -9,7 +9,7 @@
 #include <utility>
 #include <vector>
 
-#include "core/vec.hpp"
+#include "solver/core/vec.hpp"
 
 namespace asperity::geometry {
 namespace {

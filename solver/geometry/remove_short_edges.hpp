@@ -2,7 +2,7 @@
 // behind, keeping the triangle count (issue 11, item 5).
 #pragma once
 
-#include "core/mesh.hpp"
+#include "solver/core/mesh.hpp"
 
 namespace asperity::geometry {
 

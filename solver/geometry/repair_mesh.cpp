@@ -2,7 +2,7 @@
 // (edges, fans, shells, orientation) is counted here on plain index arrays, so every message
 // can give counts; CGAL supplies the exact collinearity predicate, degenerate-face collapse and
 // the self-intersection test (box intersection of face bounding boxes, exact predicates).
-#include "geometry/repair_mesh.hpp"
+#include "solver/geometry/repair_mesh.hpp"
 
 #include <algorithm>
 #include <array>
@@ -17,9 +17,9 @@
 #include <CGAL/Polygon_mesh_processing/repair_degeneracies.h>
 #include <CGAL/Polygon_mesh_processing/self_intersections.h>
 
-#include "core/error.hpp"
-#include "core/vec.hpp"
-#include "geometry/cgal_surface_mesh.hpp"
+#include "solver/core/error.hpp"
+#include "solver/core/vec.hpp"
+#include "solver/geometry/cgal_surface_mesh.hpp"
 
 namespace asperity::geometry {
 namespace {

@@ -6,8 +6,8 @@
 #include <string>
 #include <vector>
 
-#include "core/mesh.hpp"
-#include "geometry/read_mesh.hpp"
+#include "solver/core/mesh.hpp"
+#include "solver/geometry/read_mesh.hpp"
 
 namespace asperity::geometry {
 

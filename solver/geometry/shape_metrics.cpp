@@ -1,5 +1,5 @@
 // Shape metrics against the source mesh (issue 3, "Shape metrics"); definitions in the header.
-#include "geometry/shape_metrics.hpp"
+#include "solver/geometry/shape_metrics.hpp"
 
 #include <algorithm>
 #include <cmath>

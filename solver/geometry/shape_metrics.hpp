@@ -1,8 +1,8 @@
 // What simplification did to a particle's shape: the numbers the particle-geometry study reports.
 #pragma once
 
-#include "core/mesh.hpp"
-#include "geometry/mass_properties.hpp"
+#include "solver/core/mesh.hpp"
+#include "solver/geometry/mass_properties.hpp"
 
 namespace asperity::geometry {
 

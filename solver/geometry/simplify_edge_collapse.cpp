@@ -1,6 +1,6 @@
 // Edge-collapse simplification to an exact triangle count (issue 3, "Simplification"); the
 // choice of policies and why is in the header.
-#include "geometry/simplify_edge_collapse.hpp"
+#include "solver/geometry/simplify_edge_collapse.hpp"
 
 #include <stdexcept>
 
@@ -10,9 +10,9 @@
 #include <CGAL/Surface_mesh_simplification/Policies/Edge_collapse/LindstromTurk_placement.h>
 #include <CGAL/Surface_mesh_simplification/edge_collapse.h>
 
-#include "core/error.hpp"
-#include "geometry/cgal_surface_mesh.hpp"
-#include "geometry/remove_short_edges.hpp"
+#include "solver/core/error.hpp"
+#include "solver/geometry/cgal_surface_mesh.hpp"
+#include "solver/geometry/remove_short_edges.hpp"
 
 namespace asperity::geometry {
 

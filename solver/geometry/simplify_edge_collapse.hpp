@@ -3,7 +3,7 @@
 
 #include <string>
 
-#include "core/mesh.hpp"
+#include "solver/core/mesh.hpp"
 
 namespace asperity::geometry {
 

@@ -6,7 +6,7 @@
 #include <cstdint>
 #include <numbers>
 
-#include "core/vec.hpp"
+#include "solver/core/vec.hpp"
 
 namespace asperity::geometry {
 

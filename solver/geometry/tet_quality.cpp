@@ -1,5 +1,5 @@
 // Tetrahedral mesh quality (issue 3: tet count, minimum dihedral angle, smallest edge, volume).
-#include "geometry/tet_quality.hpp"
+#include "solver/geometry/tet_quality.hpp"
 
 #include <algorithm>
 #include <cmath>
@@ -7,7 +7,7 @@
 #include <numbers>
 #include <vector>
 
-#include "core/vec.hpp"
+#include "solver/core/vec.hpp"
 
 namespace asperity::geometry {
 

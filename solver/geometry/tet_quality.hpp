@@ -1,7 +1,7 @@
 // Size and quality numbers of a tetrahedral mesh: what the FEM time step and accuracy depend on.
 #pragma once
 
-#include "core/mesh.hpp"
+#include "solver/core/mesh.hpp"
 
 namespace asperity::geometry {
 

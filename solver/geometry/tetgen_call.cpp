@@ -1,7 +1,7 @@
 // The TetGen call and its child-process isolation. TetGen is built as a library (TETLIBRARY):
 // it throws an int.
 #define TETLIBRARY
-#include "geometry/tetgen_call.hpp"
+#include "solver/geometry/tetgen_call.hpp"
 
 #include <algorithm>
 #include <chrono>
@@ -17,7 +17,7 @@
 #include <tetgen.h>
 #include <unistd.h>
 
-#include "core/error.hpp"
+#include "solver/core/error.hpp"
 
 namespace asperity::geometry {
 namespace {

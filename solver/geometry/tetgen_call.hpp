@@ -8,8 +8,8 @@
 #include <string>
 #include <vector>
 
-#include "core/mesh.hpp"
-#include "core/vec.hpp"
+#include "solver/core/mesh.hpp"
+#include "solver/core/vec.hpp"
 
 namespace asperity::geometry {
 

@@ -1,7 +1,7 @@
 // Tetrahedralization keeping the surface triangles (issue 3, "Tetrahedralization"): the element
 // size (issue 11), the TetGen jobs, and the interior points that lift flat surface tetrahedra
 // (the TetGen call itself is tetgen_call.cpp).
-#include "geometry/tetrahedralize.hpp"
+#include "solver/geometry/tetrahedralize.hpp"
 
 #include <algorithm>
 #include <array>
@@ -15,11 +15,11 @@
 #include <utility>
 #include <vector>
 
-#include "core/error.hpp"
-#include "core/vec.hpp"
-#include "fem/tet_elements.hpp"
-#include "geometry/element_size.hpp"
-#include "geometry/tetgen_call.hpp"
+#include "solver/core/error.hpp"
+#include "solver/core/vec.hpp"
+#include "solver/fem/tet_elements.hpp"
+#include "solver/geometry/element_size.hpp"
+#include "solver/geometry/tetgen_call.hpp"
 
 namespace asperity::geometry {
 namespace {

@@ -3,8 +3,8 @@
 
 #include <vector>
 
-#include "core/mesh.hpp"
-#include "geometry/element_size.hpp"
+#include "solver/core/mesh.hpp"
+#include "solver/geometry/element_size.hpp"
 
 namespace asperity::geometry {
 

@@ -1,5 +1,5 @@
 // Mesh writers (issue 3: surface.off, a tetrahedral mesh ParaView opens, `asperity particle`).
-#include "geometry/write_mesh.hpp"
+#include "solver/geometry/write_mesh.hpp"
 
 #include <algorithm>
 #include <cctype>
@@ -12,9 +12,9 @@
 
 #include <unistd.h>
 
-#include "core/error.hpp"
-#include "core/interrupt.hpp"
-#include "core/vec.hpp"
+#include "solver/core/error.hpp"
+#include "solver/core/interrupt.hpp"
+#include "solver/core/vec.hpp"
 
 namespace asperity::geometry {
 namespace {

@@ -4,8 +4,8 @@
 
 #include <filesystem>
 
-#include "core/mesh.hpp"
-#include "io/atomic_file.hpp"
+#include "solver/core/mesh.hpp"
+#include "solver/io/atomic_file.hpp"
 
 namespace asperity::geometry {
 

@@ -1,5 +1,5 @@
 // Temporary file plus rename: readers see the old file or the new one, never a partial one.
-#include "io/atomic_file.hpp"
+#include "solver/io/atomic_file.hpp"
 
 #include <unistd.h>
 
@@ -8,7 +8,7 @@
 #include <stdexcept>
 #include <system_error>
 
-#include "core/interrupt.hpp"
+#include "solver/core/interrupt.hpp"
 
 namespace asperity::io {
 

@@ -1,5 +1,5 @@
 // Checked JSON access for input files (scenes, validation cases, studies).
-#include "io/json_file.hpp"
+#include "solver/io/json_file.hpp"
 
 #include <sys/stat.h>
 
@@ -11,7 +11,7 @@
 #include <sstream>
 #include <vector>
 
-#include "core/error.hpp"
+#include "solver/core/error.hpp"
 
 namespace asperity::io {
 namespace {

@@ -11,7 +11,7 @@
 
 #include <nlohmann/json.hpp>
 
-#include "core/vec.hpp"
+#include "solver/core/vec.hpp"
 
 namespace asperity::io {
 

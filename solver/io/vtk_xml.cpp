@@ -3,7 +3,7 @@
 // separately, as VTK's own vtkXMLWriter does for uncompressed data; a DataArray's `offset` is the
 // position of its block in the encoded characters after the leading '_'. Because each array's
 // block stands alone, an array encoded once (Encoded) is copied into any document as it is.
-#include "io/vtk_xml.hpp"
+#include "solver/io/vtk_xml.hpp"
 
 #include <algorithm>
 #include <cstdio>
@@ -12,7 +12,7 @@
 #include <stdexcept>
 #include <type_traits>
 
-#include "io/atomic_file.hpp"
+#include "solver/io/atomic_file.hpp"
 
 namespace asperity::io::vtk {
 namespace {

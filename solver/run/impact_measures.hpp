@@ -7,7 +7,7 @@
 #include <optional>
 #include <vector>
 
-#include "core/vec.hpp"
+#include "solver/core/vec.hpp"
 
 namespace asperity::run {
 

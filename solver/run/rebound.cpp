@@ -1,5 +1,5 @@
 // Rebound measures of the recorded sphere (formulas and sign conventions in the header).
-#include "run/rebound.hpp"
+#include "solver/run/rebound.hpp"
 
 #include <cmath>
 #include <limits>

@@ -7,8 +7,8 @@
 
 #include <nlohmann/json.hpp>
 
-#include "core/vec.hpp"
-#include "scene/scene.hpp"
+#include "solver/core/vec.hpp"
+#include "solver/scene/scene.hpp"
 
 namespace asperity::run {
 

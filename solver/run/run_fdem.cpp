@@ -2,7 +2,7 @@
 // and against fixed boxes and planes, in Munjiza's potential contact (fdem/fdem_world.hpp),
 // through the shared step policy, time loop and summary core. Only what is FEM/DEM-specific is
 // here: building the world from the scene, its step prediction, its summary keys.
-#include "run/run_fdem.hpp"
+#include "solver/run/run_fdem.hpp"
 
 #include <algorithm>
 #include <array>
@@ -17,21 +17,21 @@
 #include <optional>
 #include <string>
 
-#include "contact/munjiza_potential.hpp"
-#include "core/clock.hpp"
-#include "core/error.hpp"
-#include "core/format.hpp"
-#include "fdem/fdem_world.hpp"
-#include "fdem/runaway_penetration.hpp"
-#include "fdem/structured_mesh.hpp"
-#include "fdem/time_step.hpp"
-#include "fem/tet_elements.hpp"
-#include "io/json_file.hpp"
-#include "run/summary.hpp"
-#include "run/time_loop.hpp"
-#include "run/vtk_series.hpp"
+#include "solver/contact/munjiza_potential.hpp"
+#include "solver/core/clock.hpp"
+#include "solver/core/error.hpp"
+#include "solver/core/format.hpp"
+#include "solver/fdem/fdem_world.hpp"
+#include "solver/fdem/runaway_penetration.hpp"
+#include "solver/fdem/structured_mesh.hpp"
+#include "solver/fdem/time_step.hpp"
+#include "solver/fem/tet_elements.hpp"
+#include "solver/io/json_file.hpp"
+#include "solver/run/summary.hpp"
+#include "solver/run/time_loop.hpp"
+#include "solver/run/vtk_series.hpp"
 #if ASPERITY_HAVE_GEOMETRY
-#include "geometry/mesh_pipeline.hpp"
+#include "solver/geometry/mesh_pipeline.hpp"
 #endif
 
 namespace asperity::run {

@@ -5,10 +5,10 @@
 
 #include <vector>
 
-#include "core/mesh.hpp"
-#include "run/run_result.hpp"
-#include "run/step_policy.hpp"
-#include "scene/scene.hpp"
+#include "solver/core/mesh.hpp"
+#include "solver/run/run_result.hpp"
+#include "solver/run/step_policy.hpp"
+#include "solver/scene/scene.hpp"
 
 namespace asperity::run {
 

@@ -8,8 +8,8 @@
 #include <cstdio>
 #include <string>
 
-#include "core/energy.hpp"
-#include "core/format.hpp"
+#include "solver/core/energy.hpp"
+#include "solver/core/format.hpp"
 
 namespace asperity::run {
 

@@ -8,7 +8,7 @@
 
 #include <nlohmann/json.hpp>
 
-#include "run/vtk_output.hpp"
+#include "solver/run/vtk_output.hpp"
 
 namespace asperity::run {
 

@@ -1,10 +1,10 @@
 // Scene → its model's runner; the contract's output files.
-#include "run/run_scene.hpp"
+#include "solver/run/run_scene.hpp"
 
-#include "io/atomic_file.hpp"
-#include "io/csv.hpp"
-#include "run/run_fdem.hpp"
-#include "run/run_spheres.hpp"
+#include "solver/io/atomic_file.hpp"
+#include "solver/io/csv.hpp"
+#include "solver/run/run_fdem.hpp"
+#include "solver/run/run_spheres.hpp"
 
 namespace asperity::run {
 

@@ -5,9 +5,9 @@
 
 #include <filesystem>
 
-#include "run/run_result.hpp"
-#include "run/step_policy.hpp"
-#include "scene/scene.hpp"
+#include "solver/run/run_result.hpp"
+#include "solver/run/step_policy.hpp"
+#include "solver/scene/scene.hpp"
 
 namespace asperity::run {
 

@@ -1,19 +1,19 @@
 // The sphere DEM path of `asperity run`: rigid spheres against spheres, planes and fixed boxes
 // (dem/sphere_world.hpp), through the shared step policy, time loop and summary core.
-#include "run/run_spheres.hpp"
+#include "solver/run/run_spheres.hpp"
 
 #include <cmath>
 #include <numbers>
 #include <optional>
 
-#include "core/error.hpp"
-#include "core/format.hpp"
-#include "dem/sphere_world.hpp"
-#include "dem/time_step.hpp"
-#include "run/rebound.hpp"
-#include "run/summary.hpp"
-#include "run/time_loop.hpp"
-#include "run/vtk_series.hpp"
+#include "solver/core/error.hpp"
+#include "solver/core/format.hpp"
+#include "solver/dem/sphere_world.hpp"
+#include "solver/dem/time_step.hpp"
+#include "solver/run/rebound.hpp"
+#include "solver/run/summary.hpp"
+#include "solver/run/time_loop.hpp"
+#include "solver/run/vtk_series.hpp"
 
 namespace asperity::run {
 namespace {

@@ -1,9 +1,9 @@
 // The sphere DEM path of `asperity run` (rigid spheres, planes, boxes).
 #pragma once
 
-#include "run/run_result.hpp"
-#include "run/step_policy.hpp"
-#include "scene/scene.hpp"
+#include "solver/run/run_result.hpp"
+#include "solver/run/step_policy.hpp"
+#include "solver/scene/scene.hpp"
 
 namespace asperity::run {
 

@@ -1,15 +1,15 @@
 // Stability sweep: measured against predicted critical steps (issue "Time-step stability").
-#include "run/stability_sweep.hpp"
+#include "solver/run/stability_sweep.hpp"
 
 #include <algorithm>
 #include <cmath>
 #include <ctime>
 #include <sstream>
 
-#include "core/error.hpp"
-#include "io/atomic_file.hpp"
-#include "io/csv.hpp"
-#include "run/run_scene.hpp"
+#include "solver/core/error.hpp"
+#include "solver/io/atomic_file.hpp"
+#include "solver/io/csv.hpp"
+#include "solver/run/run_scene.hpp"
 
 namespace asperity::run {
 

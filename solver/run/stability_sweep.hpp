@@ -9,7 +9,7 @@
 
 #include <nlohmann/json.hpp>
 
-#include "scene/scene.hpp"
+#include "solver/scene/scene.hpp"
 
 namespace asperity::run {
 

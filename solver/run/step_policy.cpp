@@ -1,10 +1,10 @@
 // The one time-step policy of every runner (run/step_policy.hpp).
-#include "run/step_policy.hpp"
+#include "solver/run/step_policy.hpp"
 
 #include <cmath>
 
-#include "core/error.hpp"
-#include "core/format.hpp"
+#include "solver/core/error.hpp"
+#include "solver/core/format.hpp"
 
 namespace asperity::run {
 

@@ -6,8 +6,8 @@
 #include <optional>
 #include <string>
 
-#include "run/run_result.hpp"
-#include "scene/scene.hpp"
+#include "solver/run/run_result.hpp"
+#include "solver/scene/scene.hpp"
 
 namespace asperity::run {
 

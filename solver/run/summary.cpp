@@ -1,5 +1,5 @@
 // The contract's summary core (run/summary.hpp).
-#include "run/summary.hpp"
+#include "solver/run/summary.hpp"
 
 namespace asperity::run {
 

@@ -8,9 +8,9 @@
 
 #include <nlohmann/json.hpp>
 
-#include "core/profile.hpp"
-#include "run/impact_measures.hpp"
-#include "run/step_policy.hpp"
+#include "solver/core/profile.hpp"
+#include "solver/run/impact_measures.hpp"
+#include "solver/run/step_policy.hpp"
 
 namespace asperity::run {
 

@@ -18,16 +18,16 @@
 #include <functional>
 #include <optional>
 
-#include "core/body_contacts.hpp"
-#include "core/clock.hpp"
-#include "core/energy.hpp"
-#include "core/ticks.hpp"
-#include "run/impact_measures.hpp"
-#include "run/run_monitor.hpp"
-#include "run/run_scene.hpp"
-#include "run/step_policy.hpp"
-#include "run/summary.hpp"
-#include "scene/scene.hpp"
+#include "solver/core/body_contacts.hpp"
+#include "solver/core/clock.hpp"
+#include "solver/core/energy.hpp"
+#include "solver/core/ticks.hpp"
+#include "solver/run/impact_measures.hpp"
+#include "solver/run/run_monitor.hpp"
+#include "solver/run/run_scene.hpp"
+#include "solver/run/step_policy.hpp"
+#include "solver/run/summary.hpp"
+#include "solver/scene/scene.hpp"
 
 namespace asperity::run {
 

@@ -4,7 +4,7 @@
 
 #include <filesystem>
 
-#include "io/vtk_xml.hpp"
+#include "solver/io/vtk_xml.hpp"
 
 namespace asperity::run {
 

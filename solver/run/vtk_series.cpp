@@ -1,5 +1,5 @@
 // ParaView time series (run/vtk_series.hpp): which steps become frames, and what a frame holds.
-#include "run/vtk_series.hpp"
+#include "solver/run/vtk_series.hpp"
 
 #include <unistd.h>
 
@@ -9,10 +9,10 @@
 #include <fstream>
 #include <system_error>
 
-#include "core/error.hpp"
-#include "fdem/structured_mesh.hpp"
-#include "fem/tet_stress.hpp"
-#include "io/atomic_file.hpp"
+#include "solver/core/error.hpp"
+#include "solver/fdem/structured_mesh.hpp"
+#include "solver/fem/tet_stress.hpp"
+#include "solver/io/atomic_file.hpp"
 
 namespace asperity::run {
 namespace fs = std::filesystem;

@@ -11,10 +11,10 @@
 
 #include <Eigen/Core>
 
-#include "dem/sphere_world.hpp"
-#include "fdem/fdem_world.hpp"
-#include "io/vtk_xml.hpp"
-#include "run/vtk_output.hpp"
+#include "solver/dem/sphere_world.hpp"
+#include "solver/fdem/fdem_world.hpp"
+#include "solver/io/vtk_xml.hpp"
+#include "solver/run/vtk_output.hpp"
 
 namespace asperity::run {
 

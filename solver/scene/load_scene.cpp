@@ -3,11 +3,11 @@
 #include <map>
 #include <set>
 
-#include "core/error.hpp"
-#include "io/json_file.hpp"
-#include "scene/scene.hpp"
-#include "scene/scene_json.hpp"
-#include "scene/scene_keys.hpp"
+#include "solver/core/error.hpp"
+#include "solver/io/json_file.hpp"
+#include "solver/scene/scene.hpp"
+#include "solver/scene/scene_json.hpp"
+#include "solver/scene/scene_keys.hpp"
 
 namespace asperity::scene {
 namespace {

@@ -11,8 +11,8 @@
 #include <variant>
 #include <vector>
 
-#include "core/material.hpp"
-#include "core/vec.hpp"
+#include "solver/core/material.hpp"
+#include "solver/core/vec.hpp"
 
 namespace asperity::scene {
 

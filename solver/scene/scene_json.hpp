@@ -4,8 +4,8 @@
 #include <filesystem>
 #include <string>
 
-#include "io/json_file.hpp"
-#include "scene/scene.hpp"
+#include "solver/io/json_file.hpp"
+#include "solver/scene/scene.hpp"
 
 namespace asperity::scene {
 

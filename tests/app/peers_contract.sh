@@ -10,7 +10,7 @@ lines() { wc -l < "$1"; }
 plane=$src/validation/cases/record/record-on-plane-normal.json
 box=$src/validation/cases/record/record-on-box-oblique.json
 mesh=$src/validation/cases/stability/stability-rigid-particle-block.json
-solver="python3 $src/validation/peers/example_solver/hertz_solver.py"
+solver="python3 $src/peers/example_solver/hertz_solver.py"
 
 # Usage errors: exit 2, one line naming the peer and the reason, nothing written.
 "$bin" crosscheck "$plane" --out "$work/u1" --peer nosuch 2> "$work/u1.err"

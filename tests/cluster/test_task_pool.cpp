@@ -10,7 +10,7 @@
 #include <gtest/gtest.h>
 
 #include "cluster/task_pool.hpp"
-#include "core/error.hpp"
+#include "solver/core/error.hpp"
 #include "study/study_run.hpp"
 
 namespace asperity::cluster {

@@ -3,8 +3,8 @@
 
 #include <gtest/gtest.h>
 
-#include "contact/hertz.hpp"
-#include "contact/hertz_impact.hpp"
+#include "solver/contact/hertz.hpp"
+#include "solver/contact/hertz_impact.hpp"
 
 using namespace asperity::contact;
 

@@ -3,7 +3,7 @@
 
 #include <gtest/gtest.h>
 
-#include "contact/restitution_damping.hpp"
+#include "solver/contact/restitution_damping.hpp"
 
 using namespace asperity::contact;
 

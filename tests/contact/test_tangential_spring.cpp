@@ -1,7 +1,7 @@
 // Incremental tangential spring with a Coulomb cap.
 #include <gtest/gtest.h>
 
-#include "contact/tangential_spring.hpp"
+#include "solver/contact/tangential_spring.hpp"
 
 using namespace asperity;
 using namespace asperity::contact;

@@ -5,8 +5,8 @@
 #include <cmath>
 #include <numbers>
 
-#include "contact/volume_hertz.hpp"
-#include "core/material.hpp"
+#include "solver/contact/volume_hertz.hpp"
+#include "solver/core/material.hpp"
 
 using namespace asperity;
 using namespace asperity::contact;

@@ -3,7 +3,7 @@
 
 #include <gtest/gtest.h>
 
-#include "dem/cell_grid.hpp"
+#include "solver/dem/cell_grid.hpp"
 
 using namespace asperity;
 

@@ -3,9 +3,9 @@
 
 #include <gtest/gtest.h>
 
-#include "core/material.hpp"
-#include "dem/sphere_world.hpp"
-#include "scenes.hpp"
+#include "scenes/dem_scenes.hpp"
+#include "solver/core/material.hpp"
+#include "solver/dem/sphere_world.hpp"
 
 using namespace asperity;
 

@@ -2,12 +2,12 @@
 // run/impact_measures.hpp): one definition whichever body is recorded.
 #include <gtest/gtest.h>
 
-#include "contact/hertz_impact.hpp"
-#include "core/material.hpp"
-#include "dem/sphere_world.hpp"
-#include "io/csv.hpp"
-#include "run/run_scene.hpp"
-#include "scenes.hpp"
+#include "scenes/dem_scenes.hpp"
+#include "solver/contact/hertz_impact.hpp"
+#include "solver/core/material.hpp"
+#include "solver/dem/sphere_world.hpp"
+#include "solver/io/csv.hpp"
+#include "solver/run/run_scene.hpp"
 
 namespace asperity {
 namespace {

@@ -4,10 +4,10 @@
 
 #include <gtest/gtest.h>
 
-#include "contact/hertz_impact.hpp"
-#include "core/material.hpp"
-#include "run/run_scene.hpp"
-#include "scenes.hpp"
+#include "scenes/dem_scenes.hpp"
+#include "solver/contact/hertz_impact.hpp"
+#include "solver/core/material.hpp"
+#include "solver/run/run_scene.hpp"
 
 using namespace asperity;
 

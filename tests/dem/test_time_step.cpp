@@ -4,9 +4,9 @@
 
 #include <gtest/gtest.h>
 
-#include "core/error.hpp"
-#include "run/run_scene.hpp"
-#include "scenes.hpp"
+#include "scenes/dem_scenes.hpp"
+#include "solver/core/error.hpp"
+#include "solver/run/run_scene.hpp"
 
 using namespace asperity;
 

@@ -9,9 +9,9 @@
 #include <initializer_list>
 #include <vector>
 
-#include "finite_sphere.hpp"
-#include "finite_sphere_dynamic.hpp"
-#include "hertz_series.hpp"
+#include "scenes/hertz_series.hpp"
+#include "validation/reference/finite_sphere.hpp"
+#include "validation/reference/finite_sphere_dynamic.hpp"
 
 namespace asperity::fdem::hertz {
 

@@ -3,8 +3,8 @@
 
 #include <random>
 
-#include "fdem/broad_phase.hpp"
-#include "fdem/structured_mesh.hpp"
+#include "solver/fdem/broad_phase.hpp"
+#include "solver/fdem/structured_mesh.hpp"
 
 namespace asperity::fdem {
 namespace {

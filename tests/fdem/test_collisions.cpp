@@ -2,7 +2,7 @@
 // inverted elements.
 #include <gtest/gtest.h>
 
-#include "fdem_scenes.hpp"
+#include "scenes/fdem_scenes.hpp"
 
 namespace asperity::fdem {
 namespace {

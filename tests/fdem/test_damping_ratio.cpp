@@ -7,9 +7,9 @@
 
 #include <gtest/gtest.h>
 
-#include "core/error.hpp"
-#include "run/run_scene.hpp"
-#include "scene/scene.hpp"
+#include "solver/core/error.hpp"
+#include "solver/run/run_scene.hpp"
+#include "solver/scene/scene.hpp"
 
 namespace asperity::run {
 namespace {

@@ -5,7 +5,7 @@
 
 #include <gtest/gtest.h>
 
-#include "fdem_scenes.hpp"
+#include "scenes/fdem_scenes.hpp"
 
 namespace asperity::fdem {
 namespace {

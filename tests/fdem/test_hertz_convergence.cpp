@@ -1,5 +1,5 @@
 // Hertz by element size (issue 11): a deformable sphere whose geometry stays fixed (a faceted
-// sphere fine at its strike point, tests/fdem/hertz_spheres.hpp) is meshed with a size field
+// sphere fine at its strike point, scenes/hertz_spheres.hpp) is meshed with a size field
 // graded towards the contact and refined as a whole, and strikes a fixed block; the peak force
 // and contact duration are compared with Hertz's impact. The table it prints is
 // reports/fem/hertz_convergence.md.
@@ -7,7 +7,7 @@
 
 #include <vector>
 
-#include "hertz_gate.hpp"
+#include "tests/fdem/hertz_gate.hpp"
 
 namespace asperity::fdem {
 namespace {

@@ -1,14 +1,14 @@
 // The Hertz convergence gates that take too long for CI (issue 11, item 2; label `hertz-full`,
 // run with `ctest --test-dir build -L hertz-full`): the head-on pair of deformable spheres, and
 // the Richardson limits of the sphere on a block over a/R = 0.05–0.15, whose distance from Hertz
-// must fall towards 0 as a/R → 0. Sequences: tests/fdem/hertz_series.hpp; figures:
+// must fall towards 0 as a/R → 0. Sequences: scenes/hertz_series.hpp; figures:
 // reports/fem/hertz_convergence.md.
 #include <gtest/gtest.h>
 
 #include <cmath>
 #include <cstdio>
 
-#include "hertz_gate.hpp"
+#include "tests/fdem/hertz_gate.hpp"
 
 namespace asperity::fdem {
 namespace {

@@ -5,7 +5,7 @@
 #include <chrono>
 #include <cstdio>
 
-#include "fdem_scenes.hpp"
+#include "scenes/fdem_scenes.hpp"
 
 namespace asperity::fdem {
 namespace {

@@ -5,7 +5,7 @@
 #include <cmath>
 #include <numbers>
 
-#include "run/impact_measures.hpp"
+#include "solver/run/impact_measures.hpp"
 
 namespace asperity::run {
 namespace {

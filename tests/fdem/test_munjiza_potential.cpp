@@ -1,7 +1,7 @@
 // Munjiza's potential contact kernel on single pairs of tetrahedra.
 #include <gtest/gtest.h>
 
-#include "contact/munjiza_potential.hpp"
+#include "solver/contact/munjiza_potential.hpp"
 
 namespace asperity::contact {
 namespace {

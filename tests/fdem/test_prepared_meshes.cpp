@@ -3,9 +3,9 @@
 // the same whichever case of its mesh ran first.
 #include <gtest/gtest.h>
 
-#include "core/clock.hpp"
-#include "particle_block_impact.hpp"
-#include "run/run_fdem.hpp"
+#include "scenes/particle_block_impact.hpp"
+#include "solver/core/clock.hpp"
+#include "solver/run/run_fdem.hpp"
 
 namespace asperity::run {
 namespace {

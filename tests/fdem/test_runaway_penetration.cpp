@@ -3,7 +3,7 @@
 // criterion can stop the run; healthy collisions stay far below its threshold.
 #include <gtest/gtest.h>
 
-#include "particle_block_impact.hpp"
+#include "scenes/particle_block_impact.hpp"
 
 namespace asperity::run {
 namespace {

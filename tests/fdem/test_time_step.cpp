@@ -8,8 +8,8 @@
 
 #include <Eigen/Eigenvalues>
 
-#include "fdem_scenes.hpp"
-#include "fem/neo_hookean_tet.hpp"
+#include "scenes/fdem_scenes.hpp"
+#include "solver/fem/neo_hookean_tet.hpp"
 
 namespace asperity::fdem {
 namespace {

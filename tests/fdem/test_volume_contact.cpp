@@ -6,9 +6,9 @@
 #include <cmath>
 #include <cstdio>
 
-#include "contact/overlap_volume.hpp"
-#include "contact/volume_linear.hpp"
-#include "volume_scenes.hpp"
+#include "scenes/volume_scenes.hpp"
+#include "solver/contact/overlap_volume.hpp"
+#include "solver/contact/volume_linear.hpp"
 
 namespace asperity::fdem {
 namespace {

@@ -9,9 +9,9 @@
 #include <cmath>
 #include <cstdio>
 
-#include "dem/sphere_world.hpp"
-#include "dem/time_step.hpp"
-#include "volume_scenes.hpp"
+#include "scenes/volume_scenes.hpp"
+#include "solver/dem/sphere_world.hpp"
+#include "solver/dem/time_step.hpp"
 
 namespace asperity::fdem {
 namespace {

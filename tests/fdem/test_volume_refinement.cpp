@@ -12,7 +12,7 @@
 #include <cmath>
 #include <cstdio>
 
-#include "volume_scenes.hpp"
+#include "scenes/volume_scenes.hpp"
 
 namespace asperity::fdem {
 namespace {

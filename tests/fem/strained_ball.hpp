@@ -6,7 +6,7 @@
 
 #include <cmath>
 
-#include "fem/tet_elements.hpp"
+#include "solver/fem/tet_elements.hpp"
 
 namespace asperity::fem::test_material {
 

@@ -8,10 +8,10 @@
 
 #include <Eigen/Eigenvalues>
 
-#include "fdem/structured_mesh.hpp"
-#include "fem/neo_hookean_tet.hpp"
-#include "fem/tet_elements.hpp"
-#include "test_material.hpp"
+#include "solver/fdem/structured_mesh.hpp"
+#include "solver/fem/neo_hookean_tet.hpp"
+#include "solver/fem/tet_elements.hpp"
+#include "tests/fem/test_material.hpp"
 
 namespace asperity::fem {
 namespace {

@@ -9,16 +9,16 @@
 #include <cstdio>
 #include <vector>
 
-#include "../fdem/fdem_scenes.hpp"
-#include "energy_gradient_check.hpp"
-#include "fdem/fdem_world.hpp"
-#include "fdem/structured_mesh.hpp"
-#include "fdem/time_step.hpp"
-#include "fem/linear_elastic_tet.hpp"
-#include "fem/tet_elements.hpp"
-#include "fem/tet_stress.hpp"
-#include "strained_ball.hpp"
-#include "test_material.hpp"
+#include "scenes/fdem_scenes.hpp"
+#include "solver/fdem/fdem_world.hpp"
+#include "solver/fdem/structured_mesh.hpp"
+#include "solver/fdem/time_step.hpp"
+#include "solver/fem/linear_elastic_tet.hpp"
+#include "solver/fem/tet_elements.hpp"
+#include "solver/fem/tet_stress.hpp"
+#include "tests/fem/energy_gradient_check.hpp"
+#include "tests/fem/strained_ball.hpp"
+#include "tests/fem/test_material.hpp"
 
 namespace asperity::fem {
 namespace {
@@ -289,7 +289,7 @@ TEST(LinearElasticTet, RotationGuardStopsASpinningBody) {
 TEST(LinearElasticTet, RotationGuardLetsAHertzImpactRun) {
   Material mat = fdem::scenes::rubbery();
   mat.law = ElasticLaw::linear;
-  // v ∝ (a/R)^{5/2}: 0.2 m/s gives a/R = 0.107 (tests/fdem/hertz_spheres.hpp), 0.46 gives 0.15.
+  // v ∝ (a/R)^{5/2}: 0.2 m/s gives a/R = 0.107 (scenes/hertz_spheres.hpp), 0.46 gives 0.15.
   fdem::World w = fdem::make_world(
       fdem::scenes::ball_on_block(0.1, 6, 0.46, fdem::BodyKind::deformable, mat, 2e-4));
   const fdem::scenes::Impact impact = fdem::scenes::run_impact(w, 0.1);

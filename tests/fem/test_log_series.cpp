@@ -5,8 +5,8 @@
 #include <cmath>
 #include <random>
 
-#include "fem/log_series.hpp"
-#include "fem/neo_hookean_tet.hpp"
+#include "solver/fem/log_series.hpp"
+#include "solver/fem/neo_hookean_tet.hpp"
 
 namespace asperity::fem {
 namespace {

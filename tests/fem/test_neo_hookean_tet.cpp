@@ -5,12 +5,12 @@
 
 #include <Eigen/Eigenvalues>
 
-#include "energy_gradient_check.hpp"
-#include "fdem/structured_mesh.hpp"
-#include "fem/neo_hookean_tet.hpp"
-#include "fem/tet_elements.hpp"
-#include "strained_ball.hpp"
-#include "test_material.hpp"
+#include "solver/fdem/structured_mesh.hpp"
+#include "solver/fem/neo_hookean_tet.hpp"
+#include "solver/fem/tet_elements.hpp"
+#include "tests/fem/energy_gradient_check.hpp"
+#include "tests/fem/strained_ball.hpp"
+#include "tests/fem/test_material.hpp"
 
 namespace asperity::fem {
 namespace {

@@ -4,9 +4,9 @@
 
 #include <cmath>
 
-#include "fem/neo_hookean_tet.hpp"
-#include "fem/tet_stress.hpp"
-#include "test_material.hpp"
+#include "solver/fem/neo_hookean_tet.hpp"
+#include "solver/fem/tet_stress.hpp"
+#include "tests/fem/test_material.hpp"
 
 namespace asperity::fem {
 namespace {

@@ -3,9 +3,9 @@
 
 #include <cmath>
 
-#include "fdem/fdem_world.hpp"
-#include "fdem/structured_mesh.hpp"
-#include "fdem/time_step.hpp"
+#include "solver/fdem/fdem_world.hpp"
+#include "solver/fdem/structured_mesh.hpp"
+#include "solver/fdem/time_step.hpp"
 
 namespace asperity::fdem {
 namespace {

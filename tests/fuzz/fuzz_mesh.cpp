@@ -5,9 +5,9 @@
 #include <cstddef>
 #include <cstdint>
 
-#include "core/error.hpp"
-#include "fuzz_input_file.hpp"
-#include "geometry/read_mesh.hpp"
+#include "solver/core/error.hpp"
+#include "solver/geometry/read_mesh.hpp"
+#include "tests/fuzz/fuzz_input_file.hpp"
 
 extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size) {
   try {

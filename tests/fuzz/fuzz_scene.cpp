@@ -5,9 +5,9 @@
 #include <cstdint>
 #include <string>
 
-#include "core/error.hpp"
-#include "io/json_file.hpp"
-#include "scene/scene_json.hpp"
+#include "solver/core/error.hpp"
+#include "solver/io/json_file.hpp"
+#include "solver/scene/scene_json.hpp"
 
 extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size) {
   const std::string text(reinterpret_cast<const char*>(data), size);

@@ -1,11 +1,11 @@
-// libFuzzer target: the study definition (validation/study/study_def.cpp). Any input must end in
+// libFuzzer target: the study definition (study/study_def.cpp). Any input must end in
 // a StudyDef or an InputError; anything else is a defect.
 #include <cstddef>
 #include <cstdint>
 
-#include "core/error.hpp"
-#include "fuzz_input_file.hpp"
+#include "solver/core/error.hpp"
 #include "study/study_def.hpp"
+#include "tests/fuzz/fuzz_input_file.hpp"
 
 extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size) {
   try {

@@ -11,7 +11,7 @@
 
 #include <unistd.h>
 
-#include "core/mesh.hpp"
+#include "solver/core/mesh.hpp"
 
 namespace asperity::geometry::test {
 

@@ -9,14 +9,14 @@
 #include <limits>
 #include <numbers>
 
-#include "core/error.hpp"
-#include "geometry/element_size.hpp"
-#include "geometry/geodesic_sphere.hpp"
-#include "geometry/mass_properties.hpp"
-#include "geometry/random_particle.hpp"
-#include "geometry/repair_mesh.hpp"
-#include "geometry/tet_quality.hpp"
-#include "geometry/tetrahedralize.hpp"
+#include "solver/core/error.hpp"
+#include "solver/geometry/element_size.hpp"
+#include "solver/geometry/geodesic_sphere.hpp"
+#include "solver/geometry/mass_properties.hpp"
+#include "solver/geometry/random_particle.hpp"
+#include "solver/geometry/repair_mesh.hpp"
+#include "solver/geometry/tet_quality.hpp"
+#include "solver/geometry/tetrahedralize.hpp"
 
 namespace asperity::geometry {
 namespace {

@@ -7,8 +7,8 @@
 #include <gtest/gtest.h>
 #include <Eigen/Geometry>
 
-#include "geometry/geodesic_sphere.hpp"
-#include "geometry/local_curvature.hpp"
+#include "solver/geometry/geodesic_sphere.hpp"
+#include "solver/geometry/local_curvature.hpp"
 
 namespace asperity::geometry {
 namespace {

@@ -4,10 +4,10 @@
 
 #include <gtest/gtest.h>
 
-#include "geometry/geodesic_sphere.hpp"
-#include "geometry/mass_properties.hpp"
-#include "geometry/shape_metrics.hpp"
-#include "mesh_fixtures.hpp"
+#include "solver/geometry/geodesic_sphere.hpp"
+#include "solver/geometry/mass_properties.hpp"
+#include "solver/geometry/shape_metrics.hpp"
+#include "tests/geometry/mesh_fixtures.hpp"
 
 namespace asperity::geometry {
 namespace {

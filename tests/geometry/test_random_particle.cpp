@@ -6,12 +6,12 @@
 
 #include <gtest/gtest.h>
 
-#include "core/error.hpp"
-#include "geometry/mass_properties.hpp"
-#include "geometry/random_particle.hpp"
-#include "geometry/repair_mesh.hpp"
-#include "geometry/shape_metrics.hpp"
-#include "geometry/splitmix64.hpp"
+#include "solver/core/error.hpp"
+#include "solver/geometry/mass_properties.hpp"
+#include "solver/geometry/random_particle.hpp"
+#include "solver/geometry/repair_mesh.hpp"
+#include "solver/geometry/shape_metrics.hpp"
+#include "solver/geometry/splitmix64.hpp"
 
 namespace asperity::geometry {
 namespace {

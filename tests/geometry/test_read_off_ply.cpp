@@ -14,10 +14,10 @@
 
 #include <gtest/gtest.h>
 
-#include "core/error.hpp"
-#include "geometry/read_mesh.hpp"
-#include "geometry/read_off.hpp"
-#include "geometry/read_ply.hpp"
+#include "solver/core/error.hpp"
+#include "solver/geometry/read_mesh.hpp"
+#include "solver/geometry/read_off.hpp"
+#include "solver/geometry/read_ply.hpp"
 
 namespace asperity::geometry {
 namespace {

@@ -9,10 +9,10 @@
 
 #include <gtest/gtest.h>
 
-#include "core/error.hpp"
-#include "geometry/mass_properties.hpp"
-#include "geometry/repair_mesh.hpp"
-#include "mesh_fixtures.hpp"
+#include "solver/core/error.hpp"
+#include "solver/geometry/mass_properties.hpp"
+#include "solver/geometry/repair_mesh.hpp"
+#include "tests/geometry/mesh_fixtures.hpp"
 
 namespace asperity::geometry {
 namespace {

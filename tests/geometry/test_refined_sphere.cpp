@@ -5,8 +5,8 @@
 
 #include <gtest/gtest.h>
 
-#include "geometry/geodesic_sphere.hpp"
-#include "geometry/refined_sphere.hpp"
+#include "solver/geometry/geodesic_sphere.hpp"
+#include "solver/geometry/refined_sphere.hpp"
 
 namespace asperity::geometry {
 namespace {

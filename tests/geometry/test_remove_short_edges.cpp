@@ -9,11 +9,11 @@
 
 #include <gtest/gtest.h>
 
-#include "core/vec.hpp"
-#include "geometry/geodesic_sphere.hpp"
-#include "geometry/mass_properties.hpp"
-#include "geometry/remove_short_edges.hpp"
-#include "geometry/repair_mesh.hpp"
+#include "solver/core/vec.hpp"
+#include "solver/geometry/geodesic_sphere.hpp"
+#include "solver/geometry/mass_properties.hpp"
+#include "solver/geometry/remove_short_edges.hpp"
+#include "solver/geometry/repair_mesh.hpp"
 
 namespace asperity::geometry {
 namespace {

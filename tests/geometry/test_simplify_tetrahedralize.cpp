@@ -6,16 +6,16 @@
 
 #include <gtest/gtest.h>
 
-#include "core/error.hpp"
-#include "geometry/mass_properties.hpp"
-#include "geometry/mesh_pipeline.hpp"
-#include "geometry/random_particle.hpp"
-#include "geometry/repair_mesh.hpp"
-#include "geometry/simplify_edge_collapse.hpp"
-#include "geometry/tet_quality.hpp"
-#include "geometry/tetgen_call.hpp"
-#include "geometry/tetrahedralize.hpp"
-#include "mesh_fixtures.hpp"
+#include "solver/core/error.hpp"
+#include "solver/geometry/mass_properties.hpp"
+#include "solver/geometry/mesh_pipeline.hpp"
+#include "solver/geometry/random_particle.hpp"
+#include "solver/geometry/repair_mesh.hpp"
+#include "solver/geometry/simplify_edge_collapse.hpp"
+#include "solver/geometry/tet_quality.hpp"
+#include "solver/geometry/tetgen_call.hpp"
+#include "solver/geometry/tetrahedralize.hpp"
+#include "tests/geometry/mesh_fixtures.hpp"
 
 namespace asperity::geometry {
 namespace {

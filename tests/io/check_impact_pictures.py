@@ -1,5 +1,5 @@
 #!/usr/bin/python3
-"""The report's Hertz picture (validation/report/impact_pictures.py) from a real run's frames:
+"""The report's Hertz picture (tools/report/impact_pictures.py) from a real run's frames:
 the files are pictures, and the numbers they draw hold.
 
 usage: check_impact_pictures.py ASPERITY SOURCE_DIR WORK_DIR
@@ -23,8 +23,8 @@ def check(what, ok, detail=""):
         print(f"FAIL: {what} {detail}")
 
 
-script = os.path.join(src, "validation", "report", "impact_pictures.py")
-scene = os.path.join(src, "validation", "report", "scenes", "hertz-fem-sphere-block.json")
+script = os.path.join(src, "tools", "report", "impact_pictures.py")
+scene = os.path.join(src, "tools", "report", "scenes", "hertz-fem-sphere-block.json")
 r = subprocess.run(["/usr/bin/python3", script, "--asperity", asperity, "--hertz", scene, "--hertz-out", work],
                    capture_output=True, text=True)
 check("exit 0", r.returncode == 0, r.stderr)

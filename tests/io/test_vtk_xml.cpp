@@ -8,7 +8,7 @@
 #include <sstream>
 #include <stdexcept>
 
-#include "io/vtk_xml.hpp"
+#include "solver/io/vtk_xml.hpp"
 
 namespace asperity::io::vtk {
 namespace {

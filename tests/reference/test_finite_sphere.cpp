@@ -8,7 +8,7 @@
 #include <tuple>
 #include <vector>
 
-#include "finite_sphere.hpp"
+#include "validation/reference/finite_sphere.hpp"
 
 namespace ref = asperity::reference;
 

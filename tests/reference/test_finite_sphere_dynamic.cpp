@@ -9,8 +9,8 @@
 #include <stdexcept>
 #include <vector>
 
-#include "finite_sphere.hpp"
-#include "finite_sphere_dynamic.hpp"
+#include "validation/reference/finite_sphere.hpp"
+#include "validation/reference/finite_sphere_dynamic.hpp"
 
 namespace ref = asperity::reference;
 
@@ -22,7 +22,7 @@ constexpr double kE = 10e6, kNu = 0.3, kRho = 1000.0, kR = 0.1;
 const double kMass = 4.0 / 3.0 * std::numbers::pi * kR * kR * kR * kRho;
 const ref::FiniteSphereMaterial kMaterial{.youngs_modulus = kE, .poisson_ratio = kNu, .radius = kR};
 
-// The speed whose Hertz contact radius is a/R (tests/fdem/hertz_series.hpp, speed_for).
+// The speed whose Hertz contact radius is a/R (scenes/hertz_series.hpp, speed_for).
 double speed_for(double a_over_R) {
   const double Es = kE / (1.0 - kNu * kNu);
   const double d = a_over_R * a_over_R * kR;

@@ -6,10 +6,10 @@
 
 #include <gtest/gtest.h>
 
-#include "core/error.hpp"
-#include "io/json_file.hpp"
-#include "run/run_scene.hpp"
-#include "scene/scene.hpp"
+#include "solver/core/error.hpp"
+#include "solver/io/json_file.hpp"
+#include "solver/run/run_scene.hpp"
+#include "solver/scene/scene.hpp"
 
 using namespace asperity;
 namespace fs = std::filesystem;

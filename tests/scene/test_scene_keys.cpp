@@ -10,8 +10,8 @@
 #include <sstream>
 #include <string>
 
-#include "run/summary_keys.hpp"
-#include "scene/scene_keys.hpp"
+#include "solver/run/summary_keys.hpp"
+#include "solver/scene/scene_keys.hpp"
 
 namespace asperity::scene {
 namespace {

@@ -256,7 +256,7 @@ check("report.md: the converged answer's cost is the sequence's CPU",
                 md) is not None if seq else False, seq)
 # The particles a large study charts (study_report.chart_particles): on 20 particles whose coarse fem is off by
 # 1..20 %, 5 charts take the smallest, the median ranks and the largest, in the study's order; 8 or fewer, all.
-sys.path.insert(0, os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "..", "validation", "report"))
+sys.path.insert(0, os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "..", "tools", "report"))
 import study_report  # noqa: E402
 
 synthetic = []

@@ -11,11 +11,11 @@
 
 #include <gtest/gtest.h>
 
-#include "geometry/mass_properties.hpp"
-#include "geometry/mesh_pipeline.hpp"
-#include "geometry/random_particle.hpp"
-#include "geometry/tet_quality.hpp"
-#include "geometry/tetrahedralize.hpp"
+#include "solver/geometry/mass_properties.hpp"
+#include "solver/geometry/mesh_pipeline.hpp"
+#include "solver/geometry/random_particle.hpp"
+#include "solver/geometry/tet_quality.hpp"
+#include "solver/geometry/tetrahedralize.hpp"
 #include "study/mesh_step_survey.hpp"
 #include "study/study_def.hpp"
 #include "study/study_meshes.hpp"

@@ -23,14 +23,14 @@
 
 #include <gtest/gtest.h>
 
-#include "geometry/geodesic_sphere.hpp"
-#include "geometry/mass_properties.hpp"
-#include "geometry/refined_sphere.hpp"
-#include "geometry/write_mesh.hpp"
-#include "reference/finite_sphere.hpp"
+#include "solver/geometry/geodesic_sphere.hpp"
+#include "solver/geometry/mass_properties.hpp"
+#include "solver/geometry/refined_sphere.hpp"
+#include "solver/geometry/write_mesh.hpp"
 #include "study/study_def.hpp"
 #include "study/study_run.hpp"
 #include "study/tables/study_cases.hpp"
+#include "validation/reference/finite_sphere.hpp"
 
 namespace asperity::study {
 namespace {

@@ -10,7 +10,7 @@
 
 #include <gtest/gtest.h>
 
-#include "core/error.hpp"
+#include "solver/core/error.hpp"
 #include "study/tables/tables.hpp"
 
 namespace asperity::study::tables {

@@ -1,5 +1,5 @@
 # Tolerances and refusals of the LAMMPS and LIGGGHTS gates (validation/gates/CMakeLists.txt), each
-# with its measured reason (docs/crosscheck.md; figures from validation/report/peer_table.py).
+# with its measured reason (docs/crosscheck.md; figures from tools/report/peer_table.py).
 
 # The CI subset: every geometry (sphere-sphere, sphere-plane, force recorded on the plane), law
 # (hertz, hertz-mindlin, linear), damping, obliquity, spin and Chung & Ooi test.
@@ -19,7 +19,7 @@ set(ASPERITY_PEER_CI_CASES
 # Tolerances. A gate takes its case's own ASPERITY_<peer>_TOL_<case>, else the first rule of
 # ASPERITY_<peer>_TOL_RULES (case-name regex, tolerance) its name matches, else the peer's default.
 # Each from the agreement measured over every sphere case (reports/peers/peers.md: the largest
-# |(asperity − peer)/peer| of peak force, impulse and contact duration; validation/report/
+# |(asperity − peer)/peer| of peak force, impulse and contact duration; tools/report/
 # peer_table.py), with the reason it differs at all.
 
 # Elastic normal impacts (the Hertz cases, Chung & Ooi tests 1 and 2 and test 3 at e = 1, the force

@@ -1,7 +1,7 @@
 // The finite-sphere reference (finite_sphere.hpp): mesh, assembly, contact and impact.
-#include "finite_sphere.hpp"
+#include "validation/reference/finite_sphere.hpp"
 
-#include "finite_sphere_fe.hpp"
+#include "validation/reference/finite_sphere_fe.hpp"
 
 #include <Eigen/Dense>
 #include <Eigen/Sparse>

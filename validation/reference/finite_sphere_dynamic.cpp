@@ -1,6 +1,6 @@
 // The dynamic finite-sphere reference (finite_sphere_dynamic.hpp): Newmark steps with nodal
 // unilateral contact condensed onto the candidates.
-#include "finite_sphere_dynamic.hpp"
+#include "validation/reference/finite_sphere_dynamic.hpp"
 
 #include <Eigen/Dense>
 #include <Eigen/Sparse>
@@ -13,8 +13,8 @@
 #include <stdexcept>
 #include <tuple>
 
-#include "finite_sphere_fe.hpp"
-#include "run/impact_measures.hpp"
+#include "solver/run/impact_measures.hpp"
+#include "validation/reference/finite_sphere_fe.hpp"
 
 namespace asperity::reference {
 

@@ -26,7 +26,7 @@
 
 #include <vector>
 
-#include "finite_sphere.hpp"
+#include "validation/reference/finite_sphere.hpp"
 
 namespace asperity::reference {
 

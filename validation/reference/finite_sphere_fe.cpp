@@ -1,6 +1,6 @@
 // The shared pieces of the finite-sphere references (finite_sphere_fe.hpp): mesh, element
 // matrices and the contact complementarity solver.
-#include "finite_sphere_fe.hpp"
+#include "validation/reference/finite_sphere_fe.hpp"
 
 #include <algorithm>
 #include <cmath>

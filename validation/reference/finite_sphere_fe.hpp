@@ -10,7 +10,7 @@
 #include <array>
 #include <vector>
 
-#include "finite_sphere.hpp"
+#include "validation/reference/finite_sphere.hpp"
 
 namespace asperity::reference::detail {
 

@@ -8,7 +8,7 @@
 #include <string>
 #include <vector>
 
-#include "finite_sphere.hpp"
+#include "validation/reference/finite_sphere.hpp"
 
 using namespace asperity::reference;
 

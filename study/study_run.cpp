@@ -1,0 +1,745 @@
+// The study runner: sources → meshes → cases, each phase in a pool of worker threads.
+#include "study/study_run.hpp"
+
+#include <fcntl.h>
+#include <sys/file.h>
+#include <sys/stat.h>
+#include <unistd.h>
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <cstdio>
+#include <ctime>
+#include <fstream>
+#include <map>
+#include <memory>
+#include <numbers>
+#include <optional>
+#include <sstream>
+#include <thread>
+
+#include "cluster/task_pool.hpp"
+#include "solver/core/clock.hpp"
+#include "solver/core/error.hpp"
+#include "solver/fdem/fdem_world.hpp"
+#include "solver/fdem/time_step.hpp"
+#include "solver/geometry/mesh_pipeline.hpp"
+#include "solver/geometry/write_mesh.hpp"
+#include "solver/io/atomic_file.hpp"
+#include "solver/io/json_file.hpp"
+#include "solver/run/run_fdem.hpp"
+#include "solver/run/run_scene.hpp"
+#include "solver/scene/scene.hpp"
+#include "study/study_meshes.hpp"
+
+namespace asperity::study {
+namespace fs = std::filesystem;
+using OJson = nlohmann::ordered_json;
+
+namespace {
+
+std::string read_text(const fs::path& file) {
+  std::ifstream in(file, std::ios::binary);
+  if (!in) return {};
+  std::ostringstream s;
+  s << in.rdbuf();
+  return s.str();
+}
+
+// What makes a particle's source surface: the meshes of an earlier run are reused only when it
+// matches.
+std::string source_tag(const StudyDef& def, const ParticleSource& p, std::size_t index) {
+  std::ostringstream s;
+  s.precision(17);
+  if (p.file.empty()) {
+    s << "generated seed=" << p.seed << " size=" << p.size << " elongation=" << p.elongation
+      << " flatness=" << p.flatness << " angularity=" << p.angularity
+      << " roughness=" << p.roughness << " faces=" << p.faces;
+  } else {
+    s << "file=" << fs::absolute(p.file).string() << " scale=" << p.scale
+      << " mtime=" << fs::last_write_time(p.file).time_since_epoch().count();
+  }
+  s << " particle_size=" << (def.particle_size ? *def.particle_size : 0.0);
+  if (p.orientation >= 0) {
+    s << " orientation=random#" << p.source_index << "/" << p.orientation;
+  } else if (def.random_orientation) {
+    s << " orientation=random#" << index;
+  } else {
+    s << " orientation=" << def.orientation_deg.x() << "," << def.orientation_deg.y() << ","
+      << def.orientation_deg.z();
+  }
+  return s.str();
+}
+
+std::string clock_text(double s) {
+  char buf[32];
+  if (s >= 3600) {
+    std::snprintf(buf, sizeof buf, "%dh%02dm", static_cast<int>(s / 3600),
+                  static_cast<int>(s / 60) % 60);
+  } else {
+    std::snprintf(buf, sizeof buf, "%dm%02ds", static_cast<int>(s / 60), static_cast<int>(s) % 60);
+  }
+  return buf;
+}
+
+// Progress on rank 0's stderr, across every rank: a line redrawn in place on a terminal, else one
+// line every 10 s. Fed by the task pool's reports, one at a time.
+class Progress {
+ public:
+  Progress(bool quiet, std::string what, int total, double total_weight, bool ranks)
+      : quiet_(quiet),
+        tty_(isatty(2) != 0),
+        ranks_(ranks),
+        what_(std::move(what)),
+        total_(total),
+        total_weight_(total_weight) {}
+  // A task of relative cost `weight` reported; `running`: tasks handed out and not yet reported.
+  // A task kept from an earlier run leaves the time-left estimate (its weight took no time).
+  void done(const cluster::TaskReport& r, double weight, int running) {
+    ++count_;
+    failed_ += r.failed ? 1 : 0;
+    (r.skipped ? total_weight_ -= weight : weight_ += weight);
+    if (quiet_) return;
+    const double el = elapsed();
+    if (!tty_ && el - last_print_ < 10 && count_ < total_) return;
+    last_print_ = el;
+    const double left = weight_ > 0 ? el * (total_weight_ - weight_) / weight_ : 0;
+    const std::string failed = failed_ > 0 ? ", " + std::to_string(failed_) + " failed" : "";
+    const std::string where = ranks_ ? ", rank " + std::to_string(r.rank) : "";
+    std::fprintf(stderr, "%s%s [%d/%d] %d running%s  %s elapsed, ~%s left  (%s%s)%s",
+                 tty_ ? "\r\033[K" : "", what_.c_str(), count_, total_, running, failed.c_str(),
+                 clock_text(el).c_str(), clock_text(left).c_str(), r.note.c_str(), where.c_str(),
+                 tty_ ? "" : "\n");
+    if (tty_ && count_ == total_) std::fprintf(stderr, "\n");
+  }
+  double elapsed() const {
+    return std::chrono::duration<double>(std::chrono::steady_clock::now() - start_).count();
+  }
+
+ private:
+  bool quiet_, tty_, ranks_;
+  std::string what_;
+  int total_;
+  double total_weight_;
+  int count_ = 0, failed_ = 0;
+  double weight_ = 0, last_print_ = -1e9;
+  std::chrono::steady_clock::time_point start_ = std::chrono::steady_clock::now();
+};
+
+// Relative cost of a case for scheduling (longest first) and the time-left estimate: the FEM/DEM
+// collision costs about N^1.4 (measured, docs/study.md); a rigid polyhedron has no element
+// forces; the sphere is a few thousand DEM steps.
+// A refined fem case's step falls with its size at the strike point: the surface triangles'
+// edge over the equivalent radius is about √(29/N) (N equilateral triangles on a sphere's area
+// × 1.2), so the case costs about that ratio more per step.
+double case_weight(const CaseKey& c) {
+  const double n = std::pow(static_cast<double>(c.resolution) / 100.0, 1.4);
+  switch (c.model) {
+    case ModelKind::fem:
+      if (c.level > 0) {
+        const double edge = std::sqrt(29.0 / static_cast<double>(c.resolution));
+        return n * std::max(1.0, edge / c.relative_size);
+      }
+      return n;
+    case ModelKind::rigid:
+    case ModelKind::rigid_penalty:
+      return 0.5 * n;
+    case ModelKind::sphere:
+    case ModelKind::sphere_local:
+      return 0.01;
+  }
+  return 1;
+}
+
+fs::path mesh_dir(const fs::path& out, const std::string& particle, long faces) {
+  return out / "meshes" / particle / std::to_string(faces);
+}
+
+// Per particle, from its meshes: where each case starts and how long every case runs.
+struct ParticlePlan {
+  std::map<long, double> centroid_height;   // centroid above the lowest vertex, per resolution, m
+  std::map<long, Vec3> lowest_point;        // the strike point, surface.off's coordinates, m
+  std::map<long, double> dt_fem, dt_rigid;  // estimated steps (for the rows kept), s
+  double radius = 0, mass = 0;              // volume-equivalent sphere of the reference mesh
+  // "sphere-local": Hertz's equivalent radius √(R1 R2) at the reference mesh's lowest vertex
+  // (geometry/local_curvature.hpp; 0 where the surface there is flat or concave), and its
+  // principal radii (m).
+  double local_radius = 0, local_r1 = 0, local_r2 = 0;
+  double duration = 0, contact_time = 0;  // s
+  std::string mesh_error;                 // non-empty: a resolution failed to mesh
+};
+
+// Height of the centroid of case c above the block top (z = 0), and the gap under its lowest
+// point. "centroid": every resolution's centroid at one height (the published study's
+// placement), the height at which the lowest point of the lowest-reaching mesh sits `gap` above
+// the block: Lindstrom–Turk keeps the volume, so a coarse mesh may reach below the reference
+// as well as lose its lowest asperity. "lowest": each mesh's own lowest point `gap` above the
+// block. The sphere's centre goes where the particle's centroid is, but never closer than `gap`
+// to the block.
+std::pair<double, double> start_height(const StudyDef& def, const ParticlePlan& pp,
+                                       const CaseKey& c) {
+  double reach = 0;
+  for (const auto& [n, h] : pp.centroid_height) reach = std::max(reach, h);
+  const double ref = def.gap + reach;
+  if (c.model == ModelKind::sphere) {
+    const double z = c.placement == Placement::centroid ? std::max(ref, def.gap + pp.radius)
+                                                        : def.gap + pp.radius;
+    return {z, z - pp.radius};
+  }
+  if (c.model == ModelKind::sphere_local) {
+    // Its lowest point where the reference mesh's is: `gap` above the block ("lowest"), or as
+    // the reference mesh sits under the centroid placement.
+    const double low =
+        c.placement == Placement::centroid ? ref - pp.centroid_height.at(def.reference) : def.gap;
+    return {low + pp.local_radius, low};
+  }
+  const double h = pp.centroid_height.at(c.resolution);
+  const double z = c.placement == Placement::centroid ? ref : def.gap + h;
+  return {z, z - h};
+}
+
+// The block every model strikes is rigid: the fem model's potential contact presses the particle
+// into a fixed block that does not deform (penalty α·E of the particle alone, fdem_world.cpp),
+// whereas the Hertz sphere and the volume-hertz polyhedron take E* from both materials, which
+// for a block of the particle's material halves E* (peak force 2^0.4 = 1.32 times lower, contact
+// 1.32 times longer than the fem's for the same geometry). Those models' block gets a Young's
+// modulus kRigidBlock times its own, so E* = E/(1 − ν²) of the particle to 1e-6 relative.
+constexpr double kRigidBlock = 1e6;
+OJson block_json(const StudyDef& def, ModelKind m) {
+  OJson j = material_json(def.block_material);
+  if (is_sphere(m) || m == ModelKind::rigid) j["young"] = kRigidBlock * def.block_material.young;
+  return j;
+}
+
+OJson case_scene(const StudyDef& def, const ParticlePlan& pp, const CaseKey& c) {
+  const auto [z, gap] = start_height(def, pp, c);
+  (void)gap;
+  const double half = 2 * pp.radius + 0.01,
+               depth = 2 * pp.radius + 0.01;  // block: wider than the particle
+  OJson particle = {{"name", "particle"}, {"material", "particle"}};
+  long every = 1;
+  if (c.model == ModelKind::sphere) {
+    particle["shape"] = {{"type", "sphere"}, {"radius", pp.radius}};
+  } else if (c.model == ModelKind::sphere_local) {
+    // The particle's mass on a sphere of the local radius: its own material (below).
+    particle["shape"] = {{"type", "sphere"}, {"radius", pp.local_radius}};
+    particle["material"] = "particle-local";
+  } else {
+    const fs::path rel = fs::path("..") / ".." / ".." / "meshes" / c.particle /
+                         std::to_string(c.resolution) / "surface.off";
+    particle["shape"] = {{"type", "mesh"}, {"file", rel.generic_string()}};
+    particle["model"] = c.model == ModelKind::fem ? "fem" : "rigid";
+    double dt = (c.model == ModelKind::fem ? pp.dt_fem : pp.dt_rigid).at(c.resolution);
+    if (c.level > 0) {
+      // Graded towards the strike point: h there, growing at the study's rate beyond
+      // focus_radius·h (the Hertz gate's grading, reports/fem/hertz_convergence.md).
+      const double h = c.relative_size * pp.radius;
+      const Vec3 focus = pp.lowest_point.at(c.resolution);
+      particle["shape"]["element_size"] = h;
+      particle["shape"]["element_size_focus"] = {focus.x(), focus.y(), focus.z()};
+      particle["shape"]["element_size_focus_radius"] = def.refinement.focus_radius * h;
+      particle["shape"]["element_size_growth"] = def.refinement.growth;
+      // The rows kept: the step falls about as h over the surface edge (case_weight).
+      dt *= std::min(1.0, c.relative_size / std::sqrt(29.0 / static_cast<double>(c.resolution)));
+    }
+    every = std::max(1L, static_cast<long>(pp.duration / dt / def.rows));
+  }
+  particle["position"] = {0.0, 0.0, z};
+  particle["velocity"] = {0.0, 0.0, -def.speed};
+  OJson scene = {
+      {"name", c.particle + "-" + c.dir_name()},
+      {"gravity", {0.0, 0.0, -def.gravity}},
+      {"duration", pp.duration},
+      {"dt", "auto"},
+      {"materials",
+       {{"particle", material_json(def.material)}, {"block", block_json(def, c.model)}}},
+      {"bodies",
+       {particle,
+        {{"name", "block"},
+         {"material", "block"},
+         {"shape",
+          {{"type", "box"}, {"min", {-half, -half, -depth}}, {"max", {half, half, 0.0}}}}}}},
+      {"contact",
+       {{"law", is_sphere(c.model)            ? "hertz"
+                : c.model == ModelKind::rigid ? "volume-hertz"
+                                              : "potential"}}},
+      {"record", {{"force_on", "particle"}, {"every", every}}}};
+  if (def.penalty_alpha && (c.model == ModelKind::fem || c.model == ModelKind::rigid_penalty)) {
+    scene["contact"]["penalty_alpha"] = *def.penalty_alpha;
+  }
+  if (c.level > 0 && def.refinement.max_contact_factor > 0) {
+    // A graded mesh's small surface faces under the study's explicit penalty can set a step far
+    // below the elements' (rock_02 at growth 0.15: 1.26e-9 s against 3.6e-8 s); the factor lowers
+    // the penalty of those faces alone (face-penalty, the scene default's way).
+    scene["contact"]["max_contact_factor"] = def.refinement.max_contact_factor;
+  }
+  if (c.model == ModelKind::sphere_local) {
+    OJson local = material_json(def.material);
+    local["density"] = pp.mass / (4.0 / 3.0 * std::numbers::pi * std::pow(pp.local_radius, 3));
+    scene["materials"]["particle-local"] = local;
+  }
+  if (def.end_after_separation && !is_sphere(c.model)) {
+    scene["record"]["end_after_separation"] = *def.end_after_separation * pp.contact_time;
+  }
+  return scene;
+}
+
+// Keeps about `rows` force and energy rows (every k-th, and the last): the summary's measures
+// come from every step; the rows are for the charts.
+void thin_rows(run::RunResult& r, int rows) {
+  const std::size_t n = r.force.size();
+  if (n <= static_cast<std::size_t>(2 * rows)) return;
+  const std::size_t k = n / static_cast<std::size_t>(rows);
+  std::vector<run::ForceRow> f;
+  std::vector<run::EnergyRow> e;
+  for (std::size_t i = 0; i < n; i += k) {
+    f.push_back(r.force[i]);
+    if (i < r.energy.size()) e.push_back(r.energy[i]);
+  }
+  if (f.back().t != r.force.back().t) {
+    f.push_back(r.force.back());
+    if (!r.energy.empty()) e.push_back(r.energy.back());
+  }
+  r.force = std::move(f);
+  r.energy = std::move(e);
+}
+
+// Predicted critical step of the particle (fem or rigid) above the block, times the runners'
+// default safety (run/step_policy.hpp): only used to keep about `rows` rows per case.
+double estimated_dt(const TetMesh& tets, const StudyDef& def, fdem::BodyKind kind, double radius) {
+  const fdem::World world = fdem::make_world(particle_on_block(tets, def, kind, radius));
+  return run::default_safety(kind == fdem::BodyKind::rigid ? run::StepRegime::fdem_rigid
+                                                           : run::StepRegime::fdem_deformable) *
+         fdem::critical_step(world).critical;
+}
+
+}  // namespace
+
+std::string CaseKey::dir_name() const {
+  if (model == ModelKind::sphere) return std::string("sphere-") + placement_name(placement);
+  if (model == ModelKind::sphere_local)
+    return std::string("sphere-local-") + placement_name(placement);
+  std::string level_part;
+  if (level > 0) {
+    char buf[32];
+    std::snprintf(buf, sizeof buf, "h%g-", relative_size);
+    level_part = buf;
+  }
+  return std::string(model_name(model)) + "-" + std::to_string(resolution) + "-" + level_part +
+         placement_name(placement);
+}
+
+double hertz_contact_time(double radius, double mass, double effective_young, double speed) {
+  return 2.868 * std::pow(mass * mass / (radius * effective_young * effective_young * speed), 0.2);
+}
+
+std::vector<CaseKey> plan_cases(const StudyDef& def) {
+  std::vector<CaseKey> out;
+  for (const ParticleSource& p : def.particles) {
+    for (ModelKind m : def.models) {
+      if (is_sphere(m)) {
+        for (Placement pl : def.placements) out.push_back({p.name, m, 0, pl});
+        continue;
+      }
+      for (long n : def.resolutions) {
+        for (Placement pl : def.placements) {
+          out.push_back({p.name, m, n, pl});
+          if (m != ModelKind::fem || !def.refinement.applies(n, pl)) continue;
+          for (std::size_t k = 0; k < def.refinement.sizes.size(); ++k) {
+            out.push_back({p.name, m, n, pl, static_cast<int>(k + 1), def.refinement.sizes[k]});
+          }
+        }
+      }
+    }
+  }
+  return out;
+}
+
+Shard parse_shard(const std::string& text) {
+  const auto fail = [&](const std::string& why) -> Shard {
+    throw InputError("--shard: " + why + " (got \"" + text +
+                     "\"; K/N runs the K-th of N shards, "
+                     "1 <= K <= N)");
+  };
+  const std::size_t slash = text.find('/');
+  if (slash == std::string::npos) return fail("must be K/N");
+  int k = 0, n = 0;
+  try {
+    std::size_t used_k = 0, used_n = 0;
+    k = std::stoi(text.substr(0, slash), &used_k);
+    n = std::stoi(text.substr(slash + 1), &used_n);
+    if (used_k != slash || used_n != text.size() - slash - 1) return fail("must be K/N");
+  } catch (const std::logic_error&) {
+    return fail("K and N must be whole numbers");
+  }
+  if (n < 1) return fail("N must be at least 1");
+  if (k < 1 || k > n) return fail("K must be from 1 to N");
+  return {.index = k, .count = n};
+}
+
+std::vector<std::size_t> shard_particles(const StudyDef& def, const Shard& shard) {
+  std::vector<std::size_t> out;
+  for (std::size_t i = 0; i < def.particles.size(); ++i) {
+    if (shard.count == 0 ||
+        static_cast<int>(i % static_cast<std::size_t>(shard.count)) == shard.index - 1) {
+      out.push_back(i);
+    }
+  }
+  return out;
+}
+
+FolderLock::FolderLock(const fs::path& out, const Shard& shard) {
+  // A whole run excludes everything else; shards share the study lock and each holds its own.
+  const auto take = [this](const fs::path& file, int how, const std::string& who) {
+    for (int attempt = 0; attempt < 3; ++attempt) {
+      const int fd = ::open(file.c_str(), O_CREAT | O_RDWR, 0644);
+      if (fd < 0 || ::flock(fd, how | LOCK_NB) != 0) {
+        if (fd >= 0) ::close(fd);
+        throw InputError(file.parent_path().string() + ": " + who + " is running in this folder");
+      }
+      // A study that just ended removed the file we locked (see the destructor): take a new one.
+      struct stat held {};
+      struct stat named {};
+      if (::fstat(fd, &held) == 0 && ::stat(file.c_str(), &named) == 0 &&
+          held.st_ino == named.st_ino) {
+        fds_.push_back(fd);
+        files_.push_back(file);
+        return;
+      }
+      ::close(fd);
+    }
+    throw std::runtime_error(file.string() + ": cannot take the lock");
+  };
+  take(out / "study.lock", shard.count == 0 ? LOCK_EX : LOCK_SH, "another asperity study");
+  if (shard.count > 0) {
+    const std::string name = std::to_string(shard.index) + "-of-" + std::to_string(shard.count);
+    take(out / ("shard-" + name + ".lock"), LOCK_EX, "shard " + name);
+  }
+  // SIGINT/SIGTERM remove the locks this process alone holds (a shared study.lock stays).
+  for (std::size_t i = shard.count == 0 ? 0 : 1; i < files_.size(); ++i)
+    on_interrupt_.push_back(std::make_unique<RemoveOnInterrupt>(files_[i]));
+}
+
+FolderLock::~FolderLock() {
+  // However the study ends (an exception, exit 2 included), a lock no one else holds goes: an
+  // exclusive hold is taken first, so a shard still running keeps the shared study.lock.
+  for (std::size_t i = 0; i < fds_.size(); ++i) {
+    if (::flock(fds_[i], LOCK_EX | LOCK_NB) == 0) ::unlink(files_[i].c_str());
+    ::close(fds_[i]);
+  }
+}
+
+void adopt_folder(const StudyDef& def, const fs::path& out) {
+  const fs::path file = out / "study.json";
+  const io::Json mine = io::Json::parse(definition_json(def).dump());
+  if (fs::exists(file)) {
+    const io::Json theirs = io::read_json_file(file);
+    const std::string where = first_difference(theirs, mine);
+    if (!where.empty()) {
+      throw InputError(file.string() + ": " + where + " in " + def.file.string() +
+                       ": this folder holds another study definition's cases (use another --out, "
+                       "or remove the folder)");
+    }
+    return;
+  }
+  fs::create_directories(out);
+  io::write_atomically(file, definition_json(def).dump(1) + "\n");
+}
+
+namespace {
+
+int thread_count(const StudyDef& def, const StudyRunOptions& options) {
+  if (options.jobs > 0) return options.jobs;
+  if (def.jobs > 0) return def.jobs;
+  return std::max(1, static_cast<int>(std::thread::hardware_concurrency()));
+}
+
+// Phase 1, sources (cheap, every rank): each particle's surface, centred, scaled and rotated.
+std::vector<SurfaceMesh> make_sources(const StudyDef& def,
+                                      const std::vector<std::size_t>& particles) {
+  std::vector<SurfaceMesh> sources(def.particles.size());
+  for (std::size_t i : particles) sources[i] = particle_source(def, i);
+  return sources;
+}
+
+// Rank 0 writes the sources for the record.
+void write_sources(const StudyDef& def, const fs::path& out,
+                   const std::vector<std::size_t>& particles,
+                   const std::vector<SurfaceMesh>& sources) {
+  for (std::size_t i : particles) {
+    const fs::path f = out / "particles" / (def.particles[i].name + ".off");
+    fs::create_directories(f.parent_path());
+    geometry::write_surface_mesh(f, sources[i]);
+  }
+}
+
+struct MeshTask {
+  std::size_t particle;
+  long faces;
+};
+struct Meshes {
+  std::vector<MeshTask> tasks;
+  std::vector<std::string> errors;  // per task; empty: meshed (now or by an earlier run)
+};
+
+// One mesh: the source simplified to `faces` triangles and tetrahedralized, with the study's
+// placement data in mesh.json; kept when an earlier run made it from the same source.
+cluster::TaskReport make_mesh(const StudyDef& def, const fs::path& out, const MeshTask& t,
+                              const SurfaceMesh& source) {
+  const ParticleSource& p = def.particles[t.particle];
+  const std::string tag = source_tag(def, p, t.particle);
+  const std::string label = p.name + " " + std::to_string(t.faces);
+  const fs::path dir = mesh_dir(out, p.name, t.faces);
+  const double cpu0 = thread_cpu_seconds();
+  try {
+    const fs::path report = dir / "mesh.json";
+    if (fs::exists(report)) {
+      const io::Json j = io::read_json_file(report);
+      if (j.value("study_source", "") == tag && j.contains("lowest_point")) {
+        return {.skipped = true, .note = label + " (kept)"};
+      }
+    }
+    const geometry::PreparedParticle prepared = particle_mesh(source, p.name, t.faces);
+    fs::create_directories(dir);
+    fs::remove(report);
+    geometry::write_surface_mesh(dir / "surface.off", prepared.surface);
+    nlohmann::json j = geometry::mesh_report(prepared);
+    j["study_source"] = tag;
+    Eigen::Index lowest = 0;
+    prepared.surface.vertices.row(2).minCoeff(&lowest);
+    const Vec3 low = prepared.surface.vertices.col(lowest);
+    j["centroid_height"] = prepared.props.centroid.z() - low.z();
+    j["lowest_point"] = {low.x(), low.y(), low.z()};
+    j["dt_estimate_fem"] = estimated_dt(prepared.tets, def, fdem::BodyKind::deformable,
+                                        prepared.props.equivalent_radius);
+    j["dt_estimate_rigid"] =
+        estimated_dt(prepared.tets, def, fdem::BodyKind::rigid, prepared.props.equivalent_radius);
+    j["mesh_cpu_seconds"] = thread_cpu_seconds() - cpu0;
+    io::write_atomically(report, j.dump(1) + "\n");
+    return {.note = label + " triangles"};
+  } catch (const std::exception& e) {
+    return {.failed = true, .note = label + " FAILED", .payload = e.what()};
+  }
+}
+
+// Phase 2, meshes: every particle at every resolution, over every rank's threads.
+Meshes mesh_particles(const StudyDef& def, const fs::path& out,
+                      const std::vector<std::size_t>& particles,
+                      const std::vector<SurfaceMesh>& sources, int jobs, cluster::World& world,
+                      bool quiet, StudyOutcome& outcome) {
+  Meshes m;
+  // The sphere alone needs only the reference mesh (its volume).
+  const bool polyhedra =
+      std::any_of(def.models.begin(), def.models.end(), [](ModelKind k) { return !is_sphere(k); });
+  for (std::size_t i : particles) {
+    for (long n : def.resolutions) {
+      if (polyhedra || n == def.reference) m.tasks.push_back({i, n});
+    }
+  }
+  const int n = static_cast<int>(m.tasks.size());
+  // The finest meshes first: TetGen's cost grows with the triangle count.
+  std::vector<int> order(m.tasks.size());
+  for (int k = 0; k < n; ++k) order[static_cast<std::size_t>(k)] = k;
+  std::stable_sort(order.begin(), order.end(), [&](int a, int b) {
+    return m.tasks[static_cast<std::size_t>(a)].faces > m.tasks[static_cast<std::size_t>(b)].faces;
+  });
+  Progress progress(quiet, "meshes", n, n, world.size() > 1);
+  const std::vector<cluster::TaskReport> reports = cluster::run_tasks(
+      world, n, order, jobs,
+      [&](int k) {
+        const MeshTask& t = m.tasks[static_cast<std::size_t>(k)];
+        return make_mesh(def, out, t, sources[t.particle]);
+      },
+      [&](const cluster::TaskReport& r, int running) { progress.done(r, 1, running); });
+  for (const cluster::TaskReport& r : reports) {
+    m.errors.push_back(r.failed ? r.payload : "");
+    outcome.cpu_seconds += r.cpu_seconds;
+  }
+  return m;
+}
+
+// Phase 3, plans (every rank, from the meshes' mesh.json): per particle, the placement heights,
+// the steps and the duration every case of it runs.
+std::map<std::string, ParticlePlan> plan_particles(const StudyDef& def, const fs::path& out,
+                                                   const Meshes& meshes,
+                                                   const std::vector<CaseKey>& cases) {
+  std::map<std::string, ParticlePlan> plans;
+  const double e_star = effective_young(def.material, def.block_material);
+  for (std::size_t k = 0; k < meshes.tasks.size(); ++k) {
+    const MeshTask& t = meshes.tasks[k];
+    ParticlePlan& pp = plans[def.particles[t.particle].name];
+    if (!meshes.errors[k].empty()) {
+      pp.mesh_error = std::to_string(t.faces) + " triangles: " + meshes.errors[k];
+      continue;
+    }
+    const io::Json j =
+        io::read_json_file(mesh_dir(out, def.particles[t.particle].name, t.faces) / "mesh.json");
+    pp.centroid_height[t.faces] = j.at("centroid_height").get<double>();
+    const io::Json& low = j.at("lowest_point");
+    pp.lowest_point[t.faces] =
+        Vec3(low[0].get<double>(), low[1].get<double>(), low[2].get<double>());
+    pp.dt_fem[t.faces] = j.at("dt_estimate_fem").get<double>();
+    pp.dt_rigid[t.faces] = j.at("dt_estimate_rigid").get<double>();
+    if (t.faces == def.reference) {
+      pp.radius = j.at("equivalent_radius").get<double>();
+      pp.mass = def.material.density * j.at("volume").get<double>();
+      if (std::find(def.models.begin(), def.models.end(), ModelKind::sphere_local) !=
+          def.models.end()) {
+        const LocalRadii r =
+            local_radii(mesh_dir(out, def.particles[t.particle].name, t.faces) / "surface.off");
+        pp.local_radius = r.equivalent, pp.local_r1 = r.r1, pp.local_r2 = r.r2;
+      }
+    }
+  }
+  for (auto& [name, pp] : plans) {
+    if (!pp.mesh_error.empty()) continue;
+    // "auto": the latest first contact of any of the particle's cases (its largest starting gap
+    // at the launch speed; gravity only shortens it) plus 1.5 Hertz contact times of the
+    // equivalent sphere. The contacts measured in the pilot studies (ballast and rock, 100–1000
+    // triangles, fem and rigid, 1–2 m/s) lasted 0.5–1.0 of that time (the potential law's
+    // corner contacts are stiff); 1.5 leaves half as much again for the tails of coarse meshes
+    // (docs/study.md). The window is the cost: every step before and after contact counts.
+    pp.contact_time = hertz_contact_time(pp.radius, pp.mass, e_star, def.speed);
+    double max_gap = 0;
+    for (const CaseKey& c : cases) {
+      if (c.particle == name) max_gap = std::max(max_gap, start_height(def, pp, c).second);
+    }
+    pp.duration = def.duration ? *def.duration : max_gap / def.speed + 1.5 * pp.contact_time;
+  }
+  return plans;
+}
+
+// One case: its scene.json, the run's outputs, and case.json last (the done marker); kept when
+// an earlier run finished the same scene; failed.json when it fails.
+cluster::TaskReport run_case(const StudyDef& def, const fs::path& out, const ParticlePlan& pp,
+                             const CaseKey& c) {
+  const fs::path dir = out / "cases" / c.particle / c.dir_name();
+  const std::string label = c.particle + " " + c.dir_name();
+  try {
+    fs::create_directories(dir);
+    if (!pp.mesh_error.empty()) throw std::runtime_error("meshing failed at " + pp.mesh_error);
+    if (c.model == ModelKind::sphere_local && !(pp.local_radius > 0)) {
+      throw std::runtime_error(
+          "the reference mesh is flat or concave at its lowest vertex: no "
+          "local sphere");
+    }
+    const std::string scene_text = case_scene(def, pp, c).dump(1) + "\n";
+    if (fs::exists(dir / "case.json") && read_text(dir / "scene.json") == scene_text) {
+      return {.skipped = true, .note = label + " (done before)"};
+    }
+    // Outputs of an earlier, different case go first: only this run's may sit beside the new
+    // scene.json.
+    for (const char* f : {"case.json", "failed.json", "summary.json", "force.csv", "energy.csv"})
+      fs::remove(dir / f);
+    io::write_atomically(dir / "scene.json", scene_text);
+    const scene::SceneDef scene = scene::load_scene(dir / "scene.json");
+    const double cpu0 = thread_cpu_seconds(), kept0 = run::kept_mesh_cpu_seconds();
+    run::RunResult result = run::run_scene(scene, run::RunOptions{});
+    // The case's CPU on this worker thread, its meshing included even where this process had made
+    // the mesh for an earlier case (the rigid and rigid-penalty cases of one resolution share it):
+    // what the case costs alone, whichever ran first.
+    const double cpu = thread_cpu_seconds() - cpu0 + (run::kept_mesh_cpu_seconds() - kept0);
+    thin_rows(result, def.rows);
+    // The run's own cpu_seconds counts the time loop only.
+    result.summary["cpu_seconds_thread"] = cpu;
+    // The element size at the strike point (m, null for the coarse default), as the scene set it.
+    result.summary["element_size"] = c.level > 0 ? OJson(c.relative_size * pp.radius) : OJson();
+    run::write_outputs(result, dir);
+    OJson record = {
+        {"particle", c.particle},
+        {"model", model_name(c.model)},
+        {"resolution", is_sphere(c.model) ? OJson() : OJson(c.resolution)},
+        {"placement", placement_name(c.placement)},
+        {"element_size", c.level > 0 ? OJson(c.relative_size * pp.radius) : OJson()},
+        {"element_size_rel", c.level > 0 ? OJson(c.relative_size) : OJson()},
+        {"status", result.status},
+        {"start_gap", start_height(def, pp, c).second},
+        {"duration", pp.duration},
+        {"hertz_contact_time", pp.contact_time},
+        {"local_radii",
+         c.model == ModelKind::sphere_local ? OJson{pp.local_r1, pp.local_r2} : OJson()},
+        {"cpu_seconds", cpu}};
+    io::write_atomically(dir / "case.json", record.dump(1) + "\n");
+    char buf[64];
+    std::snprintf(buf, sizeof buf, " %.2f s", cpu);
+    return {.note = label + buf};
+  } catch (const std::exception& e) {
+    try {
+      io::write_atomically(
+          dir / "failed.json",
+          OJson{{"particle", c.particle}, {"case", c.dir_name()}, {"message", e.what()}}.dump(1) +
+              "\n");
+    } catch (const std::exception&) {
+      // The folder itself cannot be written: the report still counts the failure.
+    }
+    return {.failed = true, .note = label + " FAILED", .payload = e.what()};
+  }
+}
+
+// Phase 4, cases: the most expensive first, over every rank's threads.
+void run_cases(const StudyDef& def, const fs::path& out,
+               const std::map<std::string, ParticlePlan>& plans, const std::vector<CaseKey>& cases,
+               int jobs, cluster::World& world, bool quiet, StudyOutcome& outcome) {
+  std::vector<int> order(cases.size());
+  for (std::size_t k = 0; k < cases.size(); ++k) order[k] = static_cast<int>(k);
+  const auto weight = [&](int k) { return case_weight(cases[static_cast<std::size_t>(k)]); };
+  std::stable_sort(order.begin(), order.end(), [&](int a, int b) { return weight(a) > weight(b); });
+  double total_weight = 0;
+  for (const CaseKey& c : cases) total_weight += case_weight(c);
+  outcome.cases = static_cast<int>(cases.size());
+  Progress progress(quiet, "cases", outcome.cases, total_weight, world.size() > 1);
+  cluster::PoolStats stats;
+  const std::vector<cluster::TaskReport> reports = cluster::run_tasks(
+      world, outcome.cases, order, jobs,
+      [&](int k) {
+        const CaseKey& c = cases[static_cast<std::size_t>(k)];
+        return run_case(def, out, plans.at(c.particle), c);
+      },
+      [&](const cluster::TaskReport& r, int running) { progress.done(r, weight(r.task), running); },
+      &stats);
+  for (const cluster::TaskReport& r : reports) {
+    outcome.failed += r.failed ? 1 : 0;
+    outcome.skipped += r.skipped ? 1 : 0;
+    outcome.ran += !r.failed && !r.skipped ? 1 : 0;
+    outcome.cpu_seconds += r.cpu_seconds;
+  }
+  outcome.workers = stats.workers;
+  outcome.idle_fraction = stats.idle_fraction;
+  outcome.drain_seconds = stats.drain_seconds;
+}
+
+}  // namespace
+
+StudyOutcome run_study(const StudyDef& def, const fs::path& out, const StudyRunOptions& options) {
+  const auto wall0 = std::chrono::steady_clock::now();
+  std::optional<cluster::World> own_world;
+  cluster::World& world = options.world ? *options.world : own_world.emplace();
+  const int jobs = thread_count(def, options);
+  const std::vector<std::size_t> particles = shard_particles(def, options.shard);
+  const std::vector<SurfaceMesh> sources = make_sources(def, particles);
+  std::optional<FolderLock> lock;
+  world.on_root([&] {
+    fs::create_directories(out);
+    lock.emplace(out, options.shard);
+    adopt_folder(def, out);
+    write_sources(def, out, particles, sources);
+  });
+  StudyOutcome outcome;
+  outcome.ranks = world.size();
+  const Meshes meshes =
+      mesh_particles(def, out, particles, sources, jobs, world, options.quiet, outcome);
+  std::vector<CaseKey> cases;
+  for (const CaseKey& c : plan_cases(def)) {
+    for (std::size_t i : particles) {
+      if (def.particles[i].name == c.particle) cases.push_back(c);
+    }
+  }
+  const std::map<std::string, ParticlePlan> plans = plan_particles(def, out, meshes, cases);
+  run_cases(def, out, plans, cases, jobs, world, options.quiet, outcome);
+  outcome.wall_seconds =
+      std::chrono::duration<double>(std::chrono::steady_clock::now() - wall0).count();
+  return outcome;
+}
+
+}  // namespace asperity::study

@@ -1,0 +1,105 @@
+// Running a particle-geometry study: particles × resolutions × models × placements, each case a
+// scene run to its end, in a pool of worker threads, resumable and failure-tolerant.
+//
+// Layout of the study folder DIR (docs/study.md):
+//   DIR/study.json                      the resolved study definition, written by the first run;
+//                                        a run of another definition is refused (adopt_folder)
+//   DIR/particles/P.off                 each particle's source surface (scaled and rotated)
+//   DIR/meshes/P/N/surface.off          P simplified to exactly N triangles; mesh.json beside it
+//                                        (geometry::mesh_report plus the study's placement data)
+//   DIR/cases/P/MODEL-N-PLACEMENT/      one case: scene.json (its input, written first), the
+//                                        run's summary.json, force.csv, energy.csv, and case.json
+//                                        (written last: the done marker); a failed case has
+//                                        failed.json instead and is retried on the next run
+//   (sphere cases are named sphere-PLACEMENT; a refined fem case fem-N-hSIZE-PLACEMENT, SIZE the
+//   element size at the strike point over the equivalent radius)
+#pragma once
+
+#include <filesystem>
+#include <memory>
+#include <string>
+#include <vector>
+
+#include "cluster/world.hpp"
+#include "solver/core/interrupt.hpp"
+#include "study/study_def.hpp"
+
+namespace asperity::study {
+
+// Shard K of N (`--shard K/N`, 1 <= K <= N): the particles whose place in the study is K−1
+// modulo N, their meshes and their cases. Shards share no file, so a job array may run them side
+// by side into one folder; count 0: the whole study.
+struct Shard {
+  int index = 0, count = 0;
+};
+// "K/N" → Shard; InputError "--shard: problem (got ...)" otherwise.
+Shard parse_shard(const std::string& text);
+// Indices (into def.particles) of the shard's particles.
+std::vector<std::size_t> shard_particles(const StudyDef& def, const Shard& shard);
+
+struct StudyRunOptions {
+  int jobs = 0;        // worker threads per rank; 0: the study's "jobs", else every core
+  bool quiet = false;  // no progress line
+  Shard shard;
+  cluster::World* world = nullptr;  // the ranks to run on; nullptr: joins the launch itself
+};
+
+struct StudyOutcome {
+  int cases = 0, ran = 0, skipped = 0, failed = 0;
+  double wall_seconds = 0;
+  double cpu_seconds = 0;  // summed thread CPU of the cases run now (meshing included)
+  // The cases phase on rank 0 (cluster::PoolStats): ranks, workers over all ranks, the share of
+  // worker time left idle, and how long the end ran with idle workers.
+  int ranks = 1, workers = 0;
+  double idle_fraction = 0, drain_seconds = 0;
+};
+
+// One study at a time per folder (flock on DIR/study.lock, held while it lives): a whole run
+// excludes any other; shards of a study may run side by side (InputError when taken).
+class FolderLock {
+ public:
+  FolderLock(const std::filesystem::path& out, const Shard& shard);
+  ~FolderLock();
+  FolderLock(const FolderLock&) = delete;
+  FolderLock& operator=(const FolderLock&) = delete;
+
+ private:
+  std::vector<int> fds_;
+  std::vector<std::filesystem::path> files_;
+  std::vector<std::unique_ptr<RemoveOnInterrupt>> on_interrupt_;
+};
+
+// Makes DIR the folder of this study definition: writes DIR/study.json on first use; InputError
+// naming the first key that differs when DIR holds another definition's cases.
+void adopt_folder(const StudyDef& def, const std::filesystem::path& out);
+
+// One case of the study, as the runner plans it.
+struct CaseKey {
+  std::string particle;
+  ModelKind model = ModelKind::fem;
+  long resolution = 0;  // 0 for the sphere
+  Placement placement = Placement::centroid;
+  // fem only: 0 the coarse default (the surface triangles are the elements' faces), k ≥ 1 the
+  // k-th size of the study's refinement sequence.
+  int level = 0;
+  double relative_size = 0;      // that size over the equivalent radius (0 at level 0)
+  std::string dir_name() const;  // MODEL-N-PLACEMENT, fem-N-hSIZE-PLACEMENT or sphere-PLACEMENT
+};
+
+// Every case of the study, in a fixed order (particle, model, resolution, placement, level).
+std::vector<CaseKey> plan_cases(const StudyDef& def);
+
+// Runs every case of the shard not already done, on every rank of `options.world` with
+// `jobs` threads each, the most expensive first, handed out one at a time (docs/cluster.md).
+// Throws InputError for a particle that cannot be read, a folder of another study or a folder in
+// use; a mesh or case that fails is recorded and the rest go on. The phases: sources (every
+// rank), folder adopted and sources written (rank 0), meshes, plans (every rank), cases.
+StudyOutcome run_study(const StudyDef& def, const std::filesystem::path& out,
+                       const StudyRunOptions& options);
+
+// Hertz contact time of a sphere (radius R, mass m) striking a rigid-backed elastic half-space at
+// speed v: t_c = 2.868 (m² / (R E*² v))^{1/5} (Johnson 1985, §11.4), s. Used to size "auto"
+// durations.
+double hertz_contact_time(double radius, double mass, double effective_young, double speed);
+
+}  // namespace asperity::study

@@ -1,0 +1,298 @@
+// A study's case folders loaded once for its tables (tables/study_cases.hpp).
+#include "study/tables/study_cases.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <fstream>
+#include <sstream>
+
+#include "solver/io/atomic_file.hpp"
+#include "solver/io/csv.hpp"
+#include "solver/io/json_file.hpp"
+
+namespace asperity::study::tables {
+namespace fs = std::filesystem;
+namespace {
+
+std::string key_of(const std::string& p, ModelKind m, long n, Placement pl, int level = 0) {
+  return p + "|" + model_name(m) + "|" + std::to_string(n) + "|" + placement_name(pl) + "|" +
+         std::to_string(level);
+}
+std::string seq_key(const std::string& p, long n, Placement pl) {
+  return p + "|" + std::to_string(n) + "|" + placement_name(pl);
+}
+
+FemErrors abs_of(const FemErrors& e) {
+  return {std::abs(e.peak), std::abs(e.impulse), std::abs(e.duration), std::abs(e.arrival)};
+}
+
+double number(const OJson& j, const char* key) {
+  return j.contains(key) && j[key].is_number() ? j[key].get<double>() : std::nan("");
+}
+Measures measures_of(const CaseData& c) {
+  return {number(c.summary, "peak_force"), number(c.summary, "impulse"),
+          number(c.summary, "contact_duration"), number(c.summary, "first_contact_time")};
+}
+double rel(double a, double b) {
+  return std::isfinite(a) && std::isfinite(b) && b != 0 ? (a - b) / b : std::nan("");
+}
+// a against reference values b (compare's measures).
+FemErrors compare(const CaseData& a, const Measures& b) {
+  const Measures m = measures_of(a);
+  FemErrors e{rel(m.peak, b.peak), rel(m.impulse, b.impulse), rel(m.duration, b.duration)};
+  if (std::isfinite(m.first_contact) && std::isfinite(b.first_contact) && b.duration > 0) {
+    e.arrival = (m.first_contact - b.first_contact) / b.duration;
+  }
+  return e;
+}
+FemErrors compare(const Measures& a, const Measures& b) {
+  FemErrors e{rel(a.peak, b.peak), rel(a.impulse, b.impulse), rel(a.duration, b.duration)};
+  if (std::isfinite(a.first_contact) && std::isfinite(b.first_contact) && b.duration > 0) {
+    e.arrival = (a.first_contact - b.first_contact) / b.duration;
+  }
+  return e;
+}
+
+// The sequence's limit: its refined levels (level > 0) extrapolated per metric; the first-contact
+// time is not (it is the free flight's, the same at every level within steps): the answer's, with
+// its last change as the error.
+void extrapolate(Sequence& q, const std::vector<const CaseData*>& seq) {
+  const CaseData& answer = *seq.back();
+  q.limit = measures_of(answer);
+  q.limit_error = q.change;
+  std::vector<const CaseData*> refined;
+  for (const CaseData* c : seq) {
+    if (c->key.level > 0) refined.push_back(c);
+  }
+  q.refined = static_cast<int>(refined.size());
+  if (refined.size() < 2 || refined.back() != &answer) return;
+  std::vector<double> sizes;
+  for (const CaseData* c : refined) sizes.push_back(c->key.relative_size);
+  auto along = [&](double Measures::*field, double* limit, double* error) {
+    std::vector<double> v;
+    for (const CaseData* c : refined) v.push_back(measures_of(*c).*field);
+    const Extrapolation e = richardson(sizes, v);
+    *limit = e.limit;
+    *error = e.error;
+    return e;
+  };
+  q.peak = along(&Measures::peak, &q.limit.peak, &q.limit_error.peak);
+  along(&Measures::impulse, &q.limit.impulse, &q.limit_error.impulse);
+  along(&Measures::duration, &q.limit.duration, &q.limit_error.duration);
+  q.extrapolated = true;
+}
+
+// The refinement sequences (fem), the references, and each case's errors against them.
+void settle(StudyCases& s) {
+  const StudyDef& def = s.def;
+  s.err_fem.assign(s.cases.size(), {});
+  s.discretization_error.assign(s.cases.size(), std::nan(""));
+  if (!s.has_fem_reference()) return;
+  const int levels = static_cast<int>(def.refinement.sizes.size());
+  for (const ParticleSource& p : def.particles) {
+    for (Placement pl : def.placements) {
+      for (long n : def.resolutions) {
+        // The usable levels, coarse first; the answer is the finest.
+        std::vector<const CaseData*> seq;
+        const int top = def.refinement.applies(n, pl) ? levels : 0;
+        for (int l = 0; l <= top; ++l) {
+          const CaseData* c = s.find(p.name, ModelKind::fem, n, pl, l);
+          if (StudyCases::usable(c)) seq.push_back(c);
+        }
+        if (seq.empty()) continue;
+        Sequence q;
+        q.answer = s.index_of(*seq.back());
+        q.levels = static_cast<int>(seq.size());
+        if (seq.size() >= 2) {
+          q.change = abs_of(compare(*seq[seq.size() - 2], measures_of(*seq.back())));
+          q.converged = seq.size() >= 2 && seq.back()->key.level > 0 &&
+                        q.change.peak < def.refinement.tolerance;
+        }
+        extrapolate(q, seq);
+        // The discretization error of every level: its peak against the sequence's limit.
+        for (const CaseData* c : seq) {
+          s.discretization_error[s.index_of(*c)] = rel(measures_of(*c).peak, q.limit.peak);
+        }
+        s.sequences[seq_key(p.name, n, pl)] = q;
+      }
+      // The reference: the limit at the finest resolution; the geometry's share of its
+      // uncertainty from the next coarser resolution that has a sequence of the same kind.
+      const Sequence* ref = s.sequence(p.name, def.reference, pl);
+      if (!ref) continue;
+      StudyCases::Reference r;
+      r.index = ref->answer;
+      r.resolution = def.reference;
+      r.levels = ref->levels;
+      r.peak = ref->peak;
+      r.values = ref->limit;
+      r.discretization = ref->limit_error;
+      for (auto it = def.resolutions.rbegin() + 1; it < def.resolutions.rend(); ++it) {
+        const Sequence* prev = s.sequence(p.name, *it, pl);
+        if (prev && (prev->levels > 1) == (ref->levels > 1)) {
+          r.geometry = abs_of(compare(prev->limit, ref->limit));
+          r.geometry_resolution = *it;
+          break;
+        }
+      }
+      const auto hyp = [](double a, double b) {
+        return std::hypot(std::isfinite(a) ? a : 0.0, std::isfinite(b) ? b : 0.0);
+      };
+      r.uncertainty = {hyp(r.discretization.peak, r.geometry.peak),
+                       hyp(r.discretization.impulse, r.geometry.impulse),
+                       hyp(r.discretization.duration, r.geometry.duration),
+                       hyp(r.discretization.arrival, r.geometry.arrival)};
+      s.references[std::string(p.name) + "|" + placement_name(pl)] = r;
+    }
+  }
+  for (std::size_t i = 0; i < s.cases.size(); ++i) {
+    const CaseData& c = s.cases[i];
+    const StudyCases::Reference* r = s.reference(c.key.particle, c.key.placement);
+    if (r && StudyCases::usable(&c)) s.err_fem[i] = compare(c, r->values);
+  }
+}
+
+}  // namespace
+
+Extrapolation richardson(const std::vector<double>& sizes, const std::vector<double>& values) {
+  Extrapolation e;
+  const std::size_t n = values.size();
+  if (n < 2 || sizes.size() != n) return e;
+  for (double v : values) {
+    if (!std::isfinite(v)) return e;
+  }
+  const double v3 = values[n - 1], v2 = values[n - 2];
+  if (n >= 3) {
+    // Observed order of the last three: (v1 − v2)/(v2 − v3) = (s1^p − s2^p)/(s2^p − s3^p), which
+    // grows with p; bisection (the sizes need not halve).
+    const double v1 = values[n - 3], s1 = sizes[n - 3], s2 = sizes[n - 2], s3 = sizes[n - 1];
+    const double d1 = v2 - v1, d2 = v3 - v2;
+    if (d1 * d2 > 0 && std::abs(d2) < std::abs(d1)) {
+      const double target = d1 / d2;
+      const auto ratio = [&](double p) {
+        return (std::pow(s1, p) - std::pow(s2, p)) / (std::pow(s2, p) - std::pow(s3, p));
+      };
+      double lo = 1e-3, hi = 20;  // the sizes are at most 1 (of R): no overflow
+      for (int it = 0; it < 100; ++it) {
+        const double mid = 0.5 * (lo + hi);
+        (ratio(mid) < target ? lo : hi) = mid;
+      }
+      const double p = 0.5 * (lo + hi);
+      if (p >= kObservedOrderMin && p <= kObservedOrderMax) {
+        const double correction = d2 / (std::pow(s2 / s3, p) - 1);
+        e.limit = v3 + correction;
+        e.error = kSafetyObserved * std::abs(correction) / std::abs(e.limit);
+        e.order = p;
+        e.observed = true;
+        return e;
+      }
+    }
+  }
+  // The two finest levels at both ends of the assumed bracket.
+  const double r = sizes[n - 2] / sizes[n - 1], d = v3 - v2;
+  const double lo = v3 + d / (std::pow(r, kAssumedOrderLow) - 1),
+               hi = v3 + d / (std::pow(r, kAssumedOrderHigh) - 1);
+  e.limit = 0.5 * (lo + hi);
+  e.error = e.limit != 0 ? 0.5 * std::abs(lo - hi) / std::abs(e.limit) : std::nan("");
+  e.order = 0.5 * (kAssumedOrderLow + kAssumedOrderHigh);
+  return e;
+}
+
+const CaseData* StudyCases::find(const std::string& particle, ModelKind m, long resolution,
+                                 Placement pl, int level) const {
+  const auto it = index.find(key_of(particle, m, resolution, pl, level));
+  return it == index.end() ? nullptr : &cases[it->second];
+}
+
+const Sequence* StudyCases::sequence(const std::string& particle, long resolution,
+                                     Placement pl) const {
+  const auto it = sequences.find(seq_key(particle, resolution, pl));
+  return it == sequences.end() ? nullptr : &it->second;
+}
+
+const StudyCases::Reference* StudyCases::reference(const std::string& particle,
+                                                   Placement pl) const {
+  const auto it = references.find(particle + "|" + placement_name(pl));
+  return it == references.end() ? nullptr : &it->second;
+}
+
+bool StudyCases::has_fem_reference() const {
+  return std::find(def.models.begin(), def.models.end(), ModelKind::fem) != def.models.end();
+}
+
+StudyCases load_study_cases(const StudyDef& def, const fs::path& dir) {
+  StudyCases s{.def = def};
+  for (const CaseKey& k : plan_cases(def)) {
+    CaseData c;
+    c.key = k;
+    c.dir = dir / "cases" / k.particle / k.dir_name();
+    if (fs::exists(c.dir / "case.json")) {
+      const io::Json rec = io::read_json_file(c.dir / "case.json");
+      c.summary = OJson::parse(io::read_json_file(c.dir / "summary.json").dump());
+      c.status = c.summary.value("status", "missing");
+      c.cpu = c.summary.value("cpu_seconds_thread", std::nan(""));
+      c.start_gap = rec.value("start_gap", std::nan(""));
+      ++s.done;
+    } else if (fs::exists(c.dir / "failed.json")) {
+      c.status = "failed";
+      c.message = io::read_json_file(c.dir / "failed.json").value("message", "");
+      ++s.failed;
+    } else {
+      c.status = "missing";
+    }
+    const long faces = is_sphere(k.model) ? def.reference : k.resolution;
+    const fs::path mj = dir / "meshes" / k.particle / std::to_string(faces) / "mesh.json";
+    if (fs::exists(mj)) c.mesh = OJson::parse(io::read_json_file(mj).dump());
+    s.index[key_of(k.particle, k.model, k.resolution, k.placement, k.level)] = s.cases.size();
+    s.cases.push_back(std::move(c));
+  }
+  settle(s);
+  return s;
+}
+
+Curve read_force(const fs::path& file) {
+  Curve c;
+  std::ifstream in(file);
+  std::string line;
+  std::getline(in, line);  // t,fx,fy,fz,f
+  while (std::getline(in, line)) {
+    double v[5];
+    char comma;
+    std::istringstream s(line);
+    s >> v[0] >> comma >> v[1] >> comma >> v[2] >> comma >> v[3] >> comma >> v[4];
+    if (!s) continue;
+    c.t.push_back(v[0]);
+    c.f.push_back(v[4]);
+  }
+  return c;
+}
+
+OJson num_or_null(const OJson& j, const char* key) {
+  return j.is_object() && j.contains(key) && j[key].is_number() ? j[key] : OJson();
+}
+
+double rel_err(const OJson& v, const OJson& ref) {
+  if (!v.is_number() || !ref.is_number() || ref.get<double>() == 0) return std::nan("");
+  return (v.get<double>() - ref.get<double>()) / ref.get<double>();
+}
+
+OJson finite_or_null(double x) {
+  return std::isfinite(x) ? OJson(x) : OJson();
+}
+
+OJson resolution_or_null(ModelKind m, long resolution) {
+  return is_sphere(m) ? OJson() : OJson(resolution);
+}
+
+void write_csv(const fs::path& file, const std::vector<std::string>& header,
+               const std::vector<std::vector<OJson>>& rows) {
+  io::CsvWriter w(header);
+  for (const auto& row : rows) {
+    for (const OJson& v : row) {
+      w.field(v.is_null() ? std::string() : v.is_string() ? v.get<std::string>() : v.dump());
+    }
+    w.end_row();
+  }
+  io::write_atomically(file, w.str());
+}
+
+}  // namespace asperity::study::tables
