@@ -98,7 +98,8 @@ void add_study_command(CLI::App& app, Action& action) {
       "sizes refined at the strike point (the key \"refinement\"; the reference is the "
       "Richardson limit of the fem sequence at the finest resolution, with its estimated error); "
       "resumable (finished cases are kept). Writes DIR/cases/, "
-      "DIR/cases.csv, DIR/classification.csv, DIR/guidelines.csv and DIR/study_summary.json. "
+      "DIR/cases.csv, DIR/classification.csv, DIR/guidelines.csv, DIR/answer.csv (what to use for "
+      "2, 5 and 10 %) and DIR/study_summary.json. "
       "Under mpirun or srun the cases are spread over the ranks (docs/cluster.md)");
   cmd->add_option("study", args->study, "Study file (JSON, e.g. data/study/default.json)")
       ->required();

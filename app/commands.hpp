@@ -19,5 +19,6 @@ void add_particle_command(CLI::App& app, Action& action);
 void add_study_command(CLI::App& app, Action& action);
 void add_report_command(CLI::App& app, Action& action);
 void add_recommend_command(CLI::App& app, Action& action);
+void add_advise_command(CLI::App& app, Action& action);
 
 }  // namespace asperity::app

@@ -40,6 +40,7 @@ int main(int argc, char** argv) {
   app::add_study_command(cli, action);
   app::add_report_command(cli, action);
   app::add_recommend_command(cli, action);
+  app::add_advise_command(cli, action);
 
   // CLI11 reads an unknown first word as a stray positional ("A subcommand is required").
   if (argc > 1 && argv[1][0] != '-') {

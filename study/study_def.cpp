@@ -107,10 +107,16 @@ StudyDef load_study(const fs::path& file) {
   const Json json = io::read_json_file(file);
   const JsonReader r(json, file, "");
   r.require_object();
-  r.only_keys({"name", "description", "particles", "particle_size", "resolutions", "models",
-               "placements", "refinement", "speed", "orientation", "gap", "duration",
-               "end_after_separation", "penalty_alpha", "gravity", "material", "block_material",
-               "rows", "jobs"});
+  r.only_keys({"name",          "description",
+               "particles",     "particle_size",
+               "resolutions",   "models",
+               "placements",    "refinement",
+               "speed",         "orientation",
+               "orientations",  "gap",
+               "duration",      "end_after_separation",
+               "penalty_alpha", "gravity",
+               "material",      "block_material",
+               "rows",          "jobs"});
   StudyDef s;
   s.file = file;
   s.name = r.has("name") ? r.string("name") : file.stem().string();
@@ -135,6 +141,28 @@ StudyDef load_study(const fs::path& file) {
     }
   }
   if (s.particles.empty()) p.fail("", "names no particle (give \"set\" or \"meshes\")");
+  if (r.has("orientations")) {
+    if (r.has("orientation")) {
+      r.fail("orientations", "give either \"orientation\" or \"orientations\", not both");
+    }
+    const JsonReader o = r.child("orientations");
+    o.require_object();
+    o.only_keys({"random"});
+    // Each orientation is a particle of its own, with its own reference: 64 is far above what a
+    // study of 2 cores can run and keeps a typo from planning thousands of cases.
+    s.orientations = static_cast<int>(o.integer("random", 1, 64));
+    std::vector<ParticleSource> each;
+    for (std::size_t i = 0; i < s.particles.size(); ++i) {
+      for (int k = 0; k < s.orientations; ++k) {
+        ParticleSource q = s.particles[i];
+        q.name += "-o" + std::to_string(k + 1);
+        q.orientation = k;
+        q.source_index = i;
+        each.push_back(std::move(q));
+      }
+    }
+    s.particles = std::move(each);
+  }
   for (std::size_t i = 0; i < s.particles.size(); ++i) {
     const std::string& n = s.particles[i].name;
     // The name is a file and folder under --out (particles/NAME.off, meshes/NAME-N/).
@@ -347,6 +375,7 @@ nlohmann::ordered_json definition_json(const StudyDef& def) {
     } else {
       j.update({{"file", p.file.filename().string()}, {"scale", p.scale}});
     }
+    if (p.orientation >= 0) j["orientation"] = p.orientation;
     particles.push_back(j);
   }
   OJson models = OJson::array(), placements = OJson::array();
@@ -361,27 +390,30 @@ nlohmann::ordered_json definition_json(const StudyDef& def) {
                             {"focus_radius", def.refinement.focus_radius},
                             {"growth", def.refinement.growth},
                             {"max_contact_factor", def.refinement.max_contact_factor}};
-  return {{"name", def.name},
-          {"particles", particles},
-          {"particle_size", optional_json(def.particle_size)},
-          {"resolutions", def.resolutions},
-          {"models", models},
-          {"placements", placements},
-          {"refinement", refinement},
-          {"speed", def.speed},
-          {"orientation",
-           def.random_orientation
-               ? OJson("random")
-               : OJson{def.orientation_deg.x(), def.orientation_deg.y(), def.orientation_deg.z()}},
-          {"gap", def.gap},
-          {"duration", def.duration ? OJson(*def.duration) : OJson("auto")},
-          {"end_after_separation",
-           def.end_after_separation ? OJson(*def.end_after_separation) : OJson("never")},
-          {"penalty_alpha", optional_json(def.penalty_alpha)},
-          {"gravity", def.gravity},
-          {"material", material_json(def.material)},
-          {"block_material", material_json(def.block_material)},
-          {"rows", def.rows}};
+  OJson out = {{"name", def.name},
+               {"particles", particles},
+               {"particle_size", optional_json(def.particle_size)},
+               {"resolutions", def.resolutions},
+               {"models", models},
+               {"placements", placements},
+               {"refinement", refinement},
+               {"speed", def.speed},
+               {"orientation", def.random_orientation
+                                   ? OJson("random")
+                                   : OJson{def.orientation_deg.x(), def.orientation_deg.y(),
+                                           def.orientation_deg.z()}},
+               {"gap", def.gap},
+               {"duration", def.duration ? OJson(*def.duration) : OJson("auto")},
+               {"end_after_separation",
+                def.end_after_separation ? OJson(*def.end_after_separation) : OJson("never")},
+               {"penalty_alpha", optional_json(def.penalty_alpha)},
+               {"gravity", def.gravity},
+               {"material", material_json(def.material)},
+               {"block_material", material_json(def.block_material)},
+               {"rows", def.rows}};
+  // Only when given: the folders of studies without it keep their study.json.
+  if (def.orientations > 0) out["orientations"] = {{"random", def.orientations}};
+  return out;
 }
 
 std::string first_difference(const nlohmann::json& a, const nlohmann::json& b,

@@ -23,6 +23,11 @@ struct ParticleSource {
   unsigned long long seed = 0;
   double size = 0.05, elongation = 0.75, flatness = 0.75, angularity = 0.5, roughness = 0.3;
   long faces = 20480;
+  // With `orientations: {"random": K}` each particle is studied K times, as K particles named
+  // NAME-o1 ... NAME-oK: `orientation` is the k-th (from 0) of its K uniform random rotations and
+  // `source_index` its particle's place in the list before that; -1: the study's `orientation`.
+  int orientation = -1;
+  std::size_t source_index = 0;
 };
 
 enum class Placement { centroid, lowest };
@@ -73,7 +78,8 @@ struct StudyDef {
   double speed = 1;                 // m/s, straight down onto the block
   bool random_orientation = false;  // uniform random rotation per particle (seeded by its index)
   Vec3 orientation_deg = Vec3::Zero();  // else: rotations about x, then y, then z, degrees
-  double gap = 1e-4;               // m: lowest point of the placed reference mesh above the block
+  int orientations = 0;  // K random orientations per particle ({"random": K}); 0: `orientation`
+  double gap = 1e-4;     // m: lowest point of the placed reference mesh above the block
   std::optional<double> duration;  // s; empty: "auto" (per particle, see study_run.hpp)
   // A case ends this many Hertz contact times of the equivalent sphere after its contact ended
   // (scene record.end_after_separation); empty ("never"): it runs the whole duration.

@@ -2,6 +2,7 @@
 #include "study/study_meshes.hpp"
 
 #include <cmath>
+#include <cstdint>
 #include <numbers>
 
 #include "solver/core/error.hpp"
@@ -16,17 +17,27 @@ namespace asperity::study {
 
 namespace {
 
+// Uniform random rotation (Shoemake 1992, "Uniform random rotations", Graphics Gems III): a unit
+// quaternion from three uniforms.
+Mat3 random_rotation(std::uint64_t seed) {
+  geometry::SplitMix64 rng{seed};
+  const double u1 = rng.uniform(), u2 = rng.uniform(), u3 = rng.uniform();
+  const double a = std::sqrt(1 - u1), b = std::sqrt(u1), tau = 2 * std::numbers::pi;
+  const Quat q(b * std::cos(tau * u3), a * std::sin(tau * u2), a * std::cos(tau * u2),
+               b * std::sin(tau * u3));
+  return q.normalized().toRotationMatrix();
+}
+
 Mat3 orientation_matrix(const StudyDef& def, std::size_t index) {
-  if (def.random_orientation) {
-    // Uniform random rotation (Shoemake 1992, "Uniform random rotations", Graphics Gems III):
-    // a unit quaternion from three uniforms; seeded by the particle's place in the study.
-    geometry::SplitMix64 rng{0x5eedULL + 7919ULL * index};
-    const double u1 = rng.uniform(), u2 = rng.uniform(), u3 = rng.uniform();
-    const double a = std::sqrt(1 - u1), b = std::sqrt(u1), tau = 2 * std::numbers::pi;
-    const Quat q(b * std::cos(tau * u3), a * std::sin(tau * u2), a * std::cos(tau * u2),
-                 b * std::sin(tau * u3));
-    return q.normalized().toRotationMatrix();
+  const ParticleSource& p = def.particles.at(index);
+  // The k-th of K orientations: seeded by the particle's place in the list given and k, so a
+  // particle's first orientations stay the same when K grows.
+  if (p.orientation >= 0) {
+    return random_rotation(0x0e1e47ULL + 7919ULL * p.source_index +
+                           104729ULL * static_cast<std::uint64_t>(p.orientation));
   }
+  // Seeded by the particle's place in the study.
+  if (def.random_orientation) return random_rotation(0x5eedULL + 7919ULL * index);
   const Vec3 r = def.orientation_deg * (std::numbers::pi / 180);
   return (Eigen::AngleAxisd(r.z(), Vec3::UnitZ()) * Eigen::AngleAxisd(r.y(), Vec3::UnitY()) *
           Eigen::AngleAxisd(r.x(), Vec3::UnitX()))

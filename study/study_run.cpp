@@ -63,7 +63,9 @@ std::string source_tag(const StudyDef& def, const ParticleSource& p, std::size_t
       << " mtime=" << fs::last_write_time(p.file).time_since_epoch().count();
   }
   s << " particle_size=" << (def.particle_size ? *def.particle_size : 0.0);
-  if (def.random_orientation) {
+  if (p.orientation >= 0) {
+    s << " orientation=random#" << p.source_index << "/" << p.orientation;
+  } else if (def.random_orientation) {
     s << " orientation=random#" << index;
   } else {
     s << " orientation=" << def.orientation_deg.x() << "," << def.orientation_deg.y() << ","

@@ -12,6 +12,8 @@ StudyTables write_tables(const StudyDef& def, const fs::path& dir, const StudyOu
   const tables::StudyCases cases = tables::load_study_cases(def, dir);
   tables::write_cases_table(cases, dir);
   tables::write_references_table(cases, dir);
+  tables::write_discretization_table(cases, dir);
+  tables::write_geometry_tables(tables::geometry_term(tables::converged_answers(cases)), dir);
   const std::vector<tables::Classification> classes = tables::classify_resolutions(cases);
   tables::write_classification_table(classes, dir);
   tables::write_particle_classes_table(classes, dir);
@@ -19,6 +21,7 @@ StudyTables write_tables(const StudyDef& def, const fs::path& dir, const StudyOu
   tables::write_cpu_fit_table(fits, dir);
   const std::vector<tables::CandidateStats> stats = tables::candidate_stats(cases);
   tables::write_candidates_table(stats, dir);
+  tables::write_answer_tables(cases, stats, dir);
   StudyTables out{
       .cases = static_cast<int>(cases.cases.size()), .done = cases.done, .failed = cases.failed};
   out.guidelines = tables::write_guidelines(cases, stats, dir);

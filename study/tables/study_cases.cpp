@@ -64,6 +64,7 @@ void extrapolate(Sequence& q, const std::vector<const CaseData*>& seq) {
   for (const CaseData* c : seq) {
     if (c->key.level > 0) refined.push_back(c);
   }
+  q.refined = static_cast<int>(refined.size());
   if (refined.size() < 2 || refined.back() != &answer) return;
   std::vector<double> sizes;
   for (const CaseData* c : refined) sizes.push_back(c->key.relative_size);

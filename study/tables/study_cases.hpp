@@ -89,6 +89,7 @@ Extrapolation richardson(const std::vector<double>& sizes, const std::vector<dou
 struct Sequence {
   std::size_t answer = 0;  // case index
   int levels = 0;          // usable levels
+  int refined = 0;         // of which refined (level > 0)
   bool converged = false;
   FemErrors change;
   Measures limit;

@@ -47,6 +47,64 @@ void write_particle_classes_table(const std::vector<Classification>& rows,
 // reference"): which dominates, discretization or geometry.
 void write_references_table(const StudyCases& s, const std::filesystem::path& dir);
 
+// The geometry term (docs/study.md, "The geometry term"): for a study refining two or more
+// resolutions N, the converged answer at each N (the Richardson limit of its refined levels)
+// isolates the particle's shape from the element size; along N those answers form a second
+// sequence, in the surface edge length s ~ N^-1/2, extrapolated N -> infinity by richardson().
+// One particle and placement's converged answer at one N: the limit per metric and its
+// estimated error (relative).
+struct ConvergedAnswer {
+  long resolution = 0;
+  Measures limit;
+  FemErrors limit_error;
+};
+// The metrics the geometry term follows (kMetrics without the first-contact time, which is the
+// free flight's).
+inline constexpr std::size_t kGeometryMetricCount = 3;
+// The tolerances "is N enough?" is answered at.
+inline constexpr double kGeometryTolerances[] = {0.01, 0.02, 0.05};
+// geometry.csv: a particle's converged answer at one N for one metric (resolution 0: the
+// N -> infinity row, whose value is the limit and limit_error its estimated error).
+struct GeometryRow {
+  std::string particle, placement;
+  std::size_t metric = 0;  // index into kMetrics
+  long resolution = 0;
+  double value = std::nan(""), discretization_error = std::nan(""), change = std::nan(""),
+         order_observed = std::nan(""), error_vs_limit = std::nan(""), limit_error = std::nan("");
+};
+// geometry_answer.csv: is the finest-but-one N enough, per particle (and "median") and metric.
+struct GeometryAnswerRow {
+  std::string particle, placement;
+  std::size_t metric = 0;
+  long resolution = 0;
+  double value = std::nan(""), limit = std::nan(""), limit_error = std::nan(""),
+         error = std::nan(""), last_change = std::nan(""), error_estimate = std::nan(""),
+         discretization_error = std::nan("");
+  std::string estimate_from;  // "limit", "last change" or (median) "limit or last change"
+  std::string within[3];      // per kGeometryTolerances: yes, no, likely, undecided
+};
+struct GeometryTerm {
+  std::vector<GeometryRow> sequence;
+  std::vector<GeometryAnswerRow> answer;  // per particle, then the medians per placement
+};
+// The converged answers of every (particle, placement name) whose refined levels all ran, by N.
+std::map<std::pair<std::string, std::string>, std::vector<ConvergedAnswer>> converged_answers(
+    const StudyCases& s);
+// The sequence in N and the answer from the converged answers (each particle's by ascending N):
+// a particle with fewer than two N is left out.
+GeometryTerm geometry_term(
+    const std::map<std::pair<std::string, std::string>, std::vector<ConvergedAnswer>>& answers);
+// geometry.csv and geometry_answer.csv, when any particle has converged answers at two or more
+// N; otherwise neither (an earlier run's are removed).
+void write_geometry_tables(const GeometryTerm& g, const std::filesystem::path& dir);
+
+// discretization.csv: per placement and resolution N, over the particles whose fem sequence at N
+// was refined: the coarse case's discretization error (against the sequence's limit), the finest
+// level's, the limit's estimated error, the geometry effect (the limit at N against the limit at
+// the finest N), the last refinement's change and the sequence's CPU per particle (median, p90,
+// worst); medians and p90s as quantile() (type 7).
+void write_discretization_table(const StudyCases& s, const std::filesystem::path& dir);
+
 // Median CPU per resolution across particles fitted as t = C N^p (least squares, log–log).
 struct CpuFit {
   ModelKind model;
@@ -79,6 +137,44 @@ std::map<std::string, std::pair<double, double>> reference_uncertainty(const Stu
 // candidates.csv: a row per candidate.
 void write_candidates_table(const std::vector<CandidateStats>& stats,
                             const std::filesystem::path& dir);
+
+// "The answer" (docs/study.md, "The answer"): for each tolerance, metric and statistic over the
+// particles, the cheapest studied model, resolution and element size whose error against the
+// reference meets it, with its error, the reference's uncertainty (same statistic) and its CPU;
+// where none meets it, "none of the studied" with the smallest error. The reference's uncertainty
+// is reported beside the error, never a reason to leave a row unanswered.
+inline constexpr double kAnswerTolerances[] = {0.02, 0.05, 0.10};
+// "A few hundred triangles", the published study's question (Zhang & Zsaki 2019 ran 100 to 1000
+// and asked whether a few hundred suffice): at most this many surface triangles.
+inline constexpr long kFewHundred = 500;
+struct AnswerRow {
+  Placement placement = Placement::lowest;
+  std::string metric;               // kMetrics or "peak_force+impulse"
+  double tolerance = std::nan("");  // few_hundred: the smallest kAnswerTolerances met, NaN: none
+  bool p90 = false;                 // the statistic: median (half the particles) or p90
+  bool met = false;  // false: none of the studied meets it; `pick` has the best error
+  const CandidateStats* pick = nullptr;
+  double error = std::nan(""), reference_uncertainty = std::nan("");
+};
+// The metrics the answer gives at a placement: kMetrics and "peak_force+impulse", less the one
+// that is 0 by construction: the first-contact time under `lowest` (every model starts with its
+// lowest point at the same gap, so each touches at the same time).
+std::vector<std::string> answer_metrics(Placement pl);
+// Per answer_metrics(pl), kAnswerTolerances and statistic (median, p90), from the candidates at
+// pl and the reference's uncertainty (reference_uncertainty()); a metric no candidate has is
+// left out.
+std::vector<AnswerRow> answer_rows(
+    const std::vector<CandidateStats>& stats, Placement pl,
+    const std::map<std::string, std::pair<double, double>>& uncertainty);
+// "Is a few hundred triangles enough?": per answer_metrics(pl) and statistic, the candidate with a
+// surface of at most kFewHundred triangles (spheres have none) with the smallest error, `met`
+// when that error is within the largest of kAnswerTolerances, `tolerance` the smallest it meets.
+std::vector<AnswerRow> few_hundred_rows(
+    const std::vector<CandidateStats>& stats, Placement pl,
+    const std::map<std::string, std::pair<double, double>>& uncertainty);
+// answer.csv and few_hundred.csv: the rows above for every placement of the study.
+void write_answer_tables(const StudyCases& s, const std::vector<CandidateStats>& stats,
+                         const std::filesystem::path& dir);
 
 // guidelines.csv and guidelines.json: for each tolerance, metric and statistic, the cheapest
 // candidate that meets it; the JSON adds the range of particles and impacts measured (recommend

@@ -91,4 +91,25 @@ check "bad mesh file exits 2" test $? -eq 2
 check "bad mesh names the file" grep -q "broken.stl" "$work/badmesh.err"
 check "nothing written for a bad mesh" test ! -e "$work/badmesh"
 
+# advise: a bad mesh, a tolerance of 0 or below, a budget too small for one reference: one line,
+# exit 2, nothing written.
+"$bin" advise "$work/broken.stl" --tolerance 5% --out "$work/advise-bad" 2> "$work/advise.err"
+check "advise: bad mesh exits 2" test $? -eq 2
+check "advise: bad mesh is one line naming the file" \
+  test "$(wc -l < "$work/advise.err")" -eq 1 -a -n "$(grep broken.stl "$work/advise.err")"
+check "advise: nothing written for a bad mesh" test ! -e "$work/advise-bad"
+for tol in 0 -5% 0%; do  # --tolerance=: a value starting with - is not an option
+  "$bin" advise "$src/data/meshes/particle-seed3-320.off" --tolerance="$tol" \
+    --out "$work/advise-tol" 2> "$work/advise.err"
+  check "advise: tolerance $tol exits 2" test $? -eq 2
+  check "advise: tolerance $tol is named" grep -q -- "--tolerance" "$work/advise.err"
+done
+check "advise: nothing written for a bad tolerance" test ! -e "$work/advise-tol"
+"$bin" advise "$src/data/meshes/particle-seed3-320.off" --budget 0.001 \
+  --out "$work/advise-budget" 2> "$work/advise.err"
+check "advise: a budget below one reference exits 2" test $? -eq 2
+check "advise: the budget is named on one line" \
+  test "$(wc -l < "$work/advise.err")" -eq 1 -a -n "$(grep -- --budget "$work/advise.err")"
+check "advise: nothing written for a small budget" test ! -e "$work/advise-budget"
+
 report_checks

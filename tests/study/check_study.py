@@ -89,7 +89,8 @@ check("max_contact_factor below 1 exits 2 naming it",
 r = run("report", study, "--out", report)
 check("report exits 0", r.returncode == 0, r.stderr)
 for name in ["report.md", "report.html", "cases.csv", "references.csv", "classification.csv", "particle_classes.csv", "cpu_fit.csv",
-             "candidates.csv", "guidelines.csv", "cpu_vs_resolution.png", "accuracy_vs_cost.png"]:
+             "candidates.csv", "guidelines.csv", "discretization.csv", "answer.csv", "few_hundred.csv",
+             "cpu_vs_resolution.png", "accuracy_vs_cost.png"]:
     check(f"{name} present", os.path.isfile(os.path.join(report, name)) and os.path.getsize(os.path.join(report, name)) > 0)
 tables = {}
 for name in os.listdir(report):
@@ -286,6 +287,28 @@ best = min(float(c["peak_force_err_median"]) for c in tables.get("candidates.csv
 for tol in (0.02, 0.05, 0.1):
     met = [g for g in rows if float(g["tolerance"]) == tol]
     check(f"peak force {tol}: a row exactly when a candidate meets it", bool(met) == (best <= tol), (tol, best, met))
+
+# The answer (answer.csv, docs/study.md "The answer"): every tolerance, metric and statistic has a row under lowest
+# placement, the first-contact time left out (0 by construction there); a row is "studied" exactly when a candidate's
+# error is within the tolerance, and otherwise names the closest (its error the smallest of the candidates').
+answer = [a for a in tables.get("answer.csv", []) if a["placement"] == "lowest"]
+check("answer.csv: 4 metrics x 3 tolerances x 2 statistics under lowest, no first-contact row",
+      len(answer) == 24 and not any(a["metric"] == "first_contact_time" for a in answer), len(answer))
+lowest_candidates = [c for c in tables.get("candidates.csv", []) if c["placement"] == "lowest"]
+for a in answer:
+    if a["metric"] not in ("peak_force", "impulse", "contact_duration"):
+        continue
+    errors = [float(c[f"{a['metric']}_err_{a['statistic']}"]) for c in lowest_candidates]
+    within = min(errors) <= float(a["tolerance"])
+    check(f"answer {a['metric']} {a['tolerance']} {a['statistic']}: studied exactly when a candidate is within",
+          (a["answer"] == "studied") == within and (within or float(a["error"]) == min(errors)), (a, min(errors)))
+check("few_hundred.csv: a row per metric and statistic",
+      len([f for f in tables.get("few_hundred.csv", []) if f["placement"] == "lowest"]) == 8,
+      tables.get("few_hundred.csv"))
+report_md = open(os.path.join(report, "report.md")).read()
+check("the report answers 'a few hundred triangles' and never says unresolved in the answer",
+      "Is a few hundred triangles" in report_md and
+      "unresolved" not in report_md.split("## The answer")[1].split("\n## ")[0], "")
 
 # 5. recommend: JSON on stdout, a model the study has.
 scene = {"name": "new", "gravity": [0, 0, -9.81], "duration": 0.001,

@@ -30,7 +30,7 @@ import geometry_table  # noqa: E402  (beside this file)
 from tabular import fmt, num, pct, read_csv  # noqa: E402  (beside this file)
 
 TABLES = ["cases.csv", "references.csv", "classification.csv", "particle_classes.csv", "cpu_fit.csv",
-          "candidates.csv", "guidelines.csv"]
+          "candidates.csv", "guidelines.csv", "discretization.csv", "answer.csv", "few_hundred.csv"]
 MODEL_COLOURS = {"fem": "tab:blue", "rigid": "tab:orange", "rigid-penalty": "tab:red", "sphere": "tab:green",
                  "sphere-local": "tab:purple"}
 SPHERES = ("sphere", "sphere-local")
@@ -38,6 +38,10 @@ METRICS = [("peak_force", "peak force"), ("impulse", "impulse"), ("contact_durat
            ("first_contact_time", "first-contact time")]
 
 
+# answer.csv and few_hundred.csv (study/tables/answer_table.cpp).
+ANSWER_COLUMNS = ["placement", "metric", "tolerance", "statistic", "answer", "model", "resolution", "element_size_rel",
+                  "error", "reference_uncertainty", "cpu_seconds_median"]
+ANSWER_NUMERIC = ["tolerance", "resolution", "element_size_rel", "error", "reference_uncertainty", "cpu_seconds_median"]
 # What each input must hold (as `asperity study` writes it): the columns the report reads, and
 # those that must be numbers (an empty cell is allowed: a failed case has no peak force).
 SCHEMA = {
@@ -72,6 +76,17 @@ SCHEMA = {
                         "impulse_err_median", "impulse_err_p90", "contact_duration_err_median",
                         "contact_duration_err_p90", "first_contact_time_err_median", "first_contact_time_err_p90",
                         "cpu_seconds_median"]),
+    "discretization.csv": (["placement", "resolution", "sequences", "converged", "coarse_error_median",
+                            "coarse_error_p90", "finest_level_error_median", "limit_error_median", "limit_error_p90",
+                            "geometry_median", "geometry_p90", "last_change_median", "particles",
+                            "sequence_cpu_median", "sequence_cpu_p90", "sequence_cpu_worst", "worst_particle",
+                            "coarse_cpu_median"],
+                           ["resolution", "sequences", "converged", "coarse_error_median", "coarse_error_p90",
+                            "finest_level_error_median", "limit_error_median", "limit_error_p90", "geometry_median",
+                            "geometry_p90", "last_change_median", "particles", "sequence_cpu_median",
+                            "sequence_cpu_p90", "sequence_cpu_worst", "coarse_cpu_median"]),
+    "answer.csv": (ANSWER_COLUMNS, ANSWER_NUMERIC),
+    "few_hundred.csv": (ANSWER_COLUMNS, ANSWER_NUMERIC),
     "guidelines.csv": (["placement", "metric", "tolerance", "statistic", "model", "resolution", "element_size_rel",
                         "error", "reference_uncertainty", "resolvable", "cpu_seconds_median", "is_reference"],
                        ["tolerance", "resolution", "element_size_rel", "error", "reference_uncertainty",
@@ -103,7 +118,7 @@ def read_text(path):
         raise BadInput(f"{path}: not UTF-8 text (byte {e.start})") from None
 
 
-def check_table(path, columns, numeric):
+def check_table(path, columns, numeric, may_be_empty=False):
     text = read_text(path)
     try:
         rows = list(csv.reader(text.splitlines()))
@@ -116,7 +131,7 @@ def check_table(path, columns, numeric):
     if missing:
         raise BadInput(f"{path}: line 1: header lacks column {missing[0]!r}" +
                        (f" (and {len(missing) - 1} more)" if len(missing) > 1 else ""))
-    if len(rows) < 2:
+    if len(rows) < 2 and not may_be_empty:
         raise BadInput(f"{path}: no rows below the header (truncated?)")
     for i, row in enumerate(rows[1:], start=2):
         if len(row) != len(header):
@@ -156,7 +171,8 @@ def check_inputs(study):
         raise BadInput(f"{study}: not a folder")
     for t in TABLES:
         columns, numeric = SCHEMA[t]
-        check_table(os.path.join(study, t), columns, numeric)
+        # A study with no surface of at most 500 triangles has no few-hundred answer.
+        check_table(os.path.join(study, t), columns, numeric, may_be_empty=t == "few_hundred.csv")
     check_json(os.path.join(study, "study_summary.json"), SUMMARY_KEYS,
                {"published": ["simulations", "cpu_seconds_100", "cpu_seconds_1000", "cpu_growth_100_1000"],
                 "last_run": ["wall_seconds", "cpu_seconds", "ran", "kept"]})
@@ -659,55 +675,87 @@ def geometry_section(doc, study, out):
         doc.table(header, rows)
 
 
-def answer_section(doc, guidelines, published):
-    """The report's first section: to get X % on a metric, what to use, with the error and the reference's
-    uncertainty, beside the published study's CPU."""
-    placements = sorted({g["placement"] for g in guidelines})
+def candidate_name(r):
+    """model, surface triangles and element size at the strike point over the equivalent radius (refined)"""
+    what = r["model"] + (f" {r['resolution']}" if r["resolution"] else "")
+    if r["element_size_rel"]:
+        what += f" h={num(r['element_size_rel']):g}R"
+    return what
+
+
+def few_hundred_sentence(rows, names):
+    """One sentence per metric from few_hundred.csv: the best studied surface of at most 500 triangles, at the
+    median and at p90, and the smallest tolerance of the answer it meets."""
+    parts = []
+    for metric, title in names:
+        by = {r["statistic"]: r for r in rows if r["metric"] == metric}
+        if not by:
+            continue
+
+        def said(r, share):
+            within = (f"within {pct(r['tolerance'], 0)}" if r["answer"] == "studied"
+                      else "not within 10 %")
+            return (f"{within} for {share} ({candidate_name(r)}: {pct(r['error'], 1)} ± "
+                    f"{pct(r['reference_uncertainty'], 1)})")
+
+        clauses = [said(by[st], share) for st, share in (("median", "half the particles"), ("p90", "90 %"))
+                   if st in by]
+        parts.append(f"{title}: " + ", ".join(clauses))
+    return "; ".join(parts)
+
+
+def answer_section(doc, study, published):
+    """The report's first section (answer.csv and few_hundred.csv, which asperity study computes): to get X % on a
+    metric, what to use, with its error and the reference's uncertainty, beside the published study's CPU."""
+    answer = read_csv(os.path.join(study, "answer.csv"))
+    placements = sorted({r["placement"] for r in answer})
     if not placements:
-        doc.p("No guidelines: the study has no fem reference.")
+        doc.p("No answer: the study has no fem reference.")
         return
     pl = "lowest" if "lowest" in placements else placements[0]
+    names = [(m, t) for m, t in METRICS + [("peak_force+impulse", "peak force and impulse")]
+             if any(r["metric"] == m and r["placement"] == pl for r in answer)]
     doc.h(2, "The answer")
+    few = [r for r in read_csv(os.path.join(study, "few_hundred.csv")) if r["placement"] == pl]
+    if few:
+        doc.p("Is a few hundred triangles (at most 500) enough? " + few_hundred_sentence(few, names) + ".")
+    with open(os.path.join(study, "study.json")) as fh:
+        definition = json.load(fh)
+    k = (definition.get("orientations") or {}).get("random")
+    over = (f" Each particle is studied at {k} random orientations, each against its own reference: 'particles' below "
+            f"are the {len(definition['particles'])} particle-orientations ({len(definition['particles']) // k} "
+            f"particles x {k}), so each error is a distribution over particles and orientations." if k else "")
     doc.p(f"To get within X % of the converged fem reference (placed by {pl}), use the cheapest model below; "
           "'median' holds for half the particles, 'p90' for 90 % of them. Each entry: model, surface triangles, "
           "element size at the strike point over the equivalent radius when refined, its error "
-          "± the reference's uncertainty, its median CPU per case. The published study (Zhang & Zsaki 2019, "
+          "± the reference's uncertainty (same statistic), its median CPU per case; 'none of the studied' where no "
+          "studied model, resolution or element size meets the tolerance, with the closest. Rows that are 0 by "
+          "construction are left out (the first-contact time under lowest placement, where every model starts "
+          "with its lowest point at the same gap). The published study (Zhang & Zsaki 2019, "
           f"fem): {published['cpu_seconds_100']} s at 100 and {published['cpu_seconds_1000']} s at 1000 triangles "
-          "per simulation.")
+          "per simulation." + over)
 
-    def entry(g):
-        if not g:
-            return "nothing within it (see below)"
-        what = g["model"] + (f" {g['resolution']}" if g["resolution"] else "")
-        if g["element_size_rel"]:
-            what += f" h={num(g['element_size_rel']):g}R"
-        if g["is_reference"] == "true":
-            what += " (the finest refined level)"
-        flag = " unresolved" if g["resolvable"] == "false" else ""
-        return (f"{what}: {pct(g['error'], 1)} ± {pct(g['reference_uncertainty'], 1)}{flag}, "
-                f"{fmt(g['cpu_seconds_median'], 3)} s")
+    def entry(r):
+        if not r:
+            return "-"
+        said = (f"{candidate_name(r)}: {pct(r['error'], 1)} ± {pct(r['reference_uncertainty'], 1)}, "
+                f"{fmt(r['cpu_seconds_median'], 3)} s")
+        return said if r["answer"] == "studied" else f"none of the studied (closest: {said})"
 
     rows = []
-    for metric, title in METRICS + [("peak_force+impulse", "peak force and impulse")]:
+    for metric, title in names:
         for tol in ("0.02", "0.05", "0.1"):
-            pick = {st: next((g for g in guidelines if g["placement"] == pl and g["metric"] == metric
-                              and num(g["tolerance"]) == num(tol) and g["statistic"] == st), None)
+            pick = {st: next((r for r in answer if r["placement"] == pl and r["metric"] == metric
+                              and num(r["tolerance"]) == num(tol) and r["statistic"] == st), None)
                     for st in ("median", "p90")}
             rows.append([f"{pct(tol, 0)} on {title}", entry(pick["median"]), entry(pick["p90"])])
     doc.table(["to get", "median", "p90"], rows)
-    missing = [r[0] for r in rows if "nothing within it" in r[1] + r[2]]
-    if missing:
-        doc.p("Nothing within it: no model, resolution or element size studied, the finest refined fem level "
-              "included, comes within the tolerance of the reference (the Richardson limit of the fem sequence at "
-              "the finest resolution) for that share of the particles: " + "; ".join(missing) + ". The finest "
-              "level's own distance from the limit is in 'Geometry and discretization' below: where it exceeds the "
-              "tolerance the study's refinement sequence is too short to answer, and a finer element size (or the "
-              "cluster study's third level, data/study/cluster.json) is what would.")
 
 
-def axes_section(doc, cases):
-    """Geometry against discretization per resolution: the coarse fem case against the converged answer at the
-    same resolution (discretization), and the converged answer against the reference (geometry)."""
+def axes_section(doc, study, cases):
+    """Geometry against discretization per resolution (discretization.csv, which asperity study computes): the
+    coarse fem case against the converged answer at the same resolution (discretization), and the converged answer
+    against the reference (geometry)."""
     fem = [c for c in cases if c["model"] == "fem" and c["status"] == "ok"]
     if not any(c["element_size"] for c in fem):
         return
@@ -724,48 +772,25 @@ def axes_section(doc, cases):
           "the Hertz gate measured on the same graded refinement (reports/fem/hertz_convergence.md): the limit "
           "their mean, its error half their spread.")
 
-    def median(v):
-        return quantile(v, 0.5)
-
-    def spread(v):
-        """median (p90) of a list of fractions, as percentages"""
-        return f"{pct(quantile(v, 0.5))} ({pct(quantile(v, 0.9))})" if v else "-"
+    def spread(r, key):
+        """median (p90) of discretization.csv's KEY_median and KEY_p90, as percentages"""
+        if not r[key + "_median"] and not r[key + "_p90"]:
+            return "-"
+        return f"{pct(r[key + '_median'])} ({pct(r[key + '_p90'])})"
 
     rows = []
     cost = []
-    for pl in sorted({c["placement"] for c in fem}):
-        for n in sorted({c["resolution"] for c in fem}, key=num):
-            here = [c for c in fem if c["placement"] == pl and c["resolution"] == n]
-            answers = [c for c in here if c["answer"] == "true" and c["element_size"]]
-            if not answers:
-                continue
-            coarse = [c for c in here if not c["element_size"]
-                      and any(a["particle"] == c["particle"] for a in answers)]
-            finest_n = max((c["resolution"] for c in fem if c["placement"] == pl), key=num)
-            refs = {c["particle"]: num(c["extrapolated_peak_force"]) for c in fem
-                    if c["placement"] == pl and c["resolution"] == finest_n and c["answer"] == "true"}
-            geometry = [abs(num(a["extrapolated_peak_force"]) / refs[a["particle"]] - 1) for a in answers
-                        if a["particle"] in refs and a["extrapolated_peak_force"]]
-            orders = sorted({("observed " if a["order_observed"] == "true" else "assumed ") +
-                             f"{num(a['extrapolation_order']):.3g}" for a in answers if a["extrapolation_order"]})
-            rows.append([pl, n, len(answers), sum(a["converged"] == "true" for a in answers),
-                         spread([abs(num(c["discretization_error"])) for c in coarse]),
-                         pct(median([abs(num(a["discretization_error"])) for a in answers])),
-                         spread([num(a["extrapolation_error"]) for a in answers if a["extrapolation_error"]]),
-                         ", ".join(orders) or "-",
-                         spread(geometry) if n != finest_n else "-",
-                         pct(median([num(a["convergence_change"]) for a in answers]))])
-            # What a converged answer costs: the whole sequence (the coarse case and every refined level)
-            # at N, per particle.
-            per_particle = {}
-            for c in here:
-                if any(a["particle"] == c["particle"] for a in answers):
-                    per_particle[c["particle"]] = per_particle.get(c["particle"], 0.0) + num(c["cpu_seconds"])
-            worst = max(per_particle, key=per_particle.get)
-            cost.append([pl, n, len(per_particle), fmt(quantile(list(per_particle.values()), 0.5), 3),
-                         fmt(quantile(list(per_particle.values()), 0.9), 3),
-                         f"{fmt(per_particle[worst], 3)} ({worst})",
-                         fmt(median([num(c["cpu_seconds"]) for c in coarse]), 3)])
+    for r in read_csv(os.path.join(study, "discretization.csv")):
+        pl, n = r["placement"], r["resolution"]
+        answers = [c for c in fem if c["placement"] == pl and c["resolution"] == n and c["answer"] == "true"
+                   and c["element_size"]]
+        orders = sorted({("observed " if a["order_observed"] == "true" else "assumed ") +
+                         f"{num(a['extrapolation_order']):.3g}" for a in answers if a["extrapolation_order"]})
+        rows.append([pl, n, r["sequences"], r["converged"], spread(r, "coarse_error"),
+                     pct(r["finest_level_error_median"]), spread(r, "limit_error"), ", ".join(orders) or "-",
+                     spread(r, "geometry"), pct(r["last_change_median"])])
+        cost.append([pl, n, r["particles"], fmt(r["sequence_cpu_median"], 3), fmt(r["sequence_cpu_p90"], 3),
+                     f"{fmt(r['sequence_cpu_worst'], 3)} ({r['worst_particle']})", fmt(r["coarse_cpu_median"], 3)])
     doc.table(["placement", "N", "sequences", "converged (< 1 %)",
                "discretization error (coarse vs limit), median (p90)", "finest level vs limit",
                "limit's estimated error, median (p90)", "order (peak)",
@@ -853,8 +878,8 @@ def main():
     doc = Doc()
     doc.h(1, f"Particle-geometry study: {summary['study']}")
     geometry_section(doc, a.study, a.out)
-    answer_section(doc, guidelines, summary["published"])
-    axes_section(doc, cases)
+    answer_section(doc, a.study, summary["published"])
+    axes_section(doc, a.study, cases)
     with open(os.path.join(a.study, "study.json")) as fh:
         refinement = json.load(fh).get("refinement") or {}
     references_section(doc, read_csv(os.path.join(a.study, "references.csv")), refinement.get("growth"),
@@ -866,7 +891,8 @@ def main():
           "reference (err_fem): the limit of the fem refinement sequence (refined at the strike point, extrapolated "
           "as above) at the finest resolution, same placement (docs/study.md). The sphere, rigid and sphere-local "
           "models strike a rigid block, as the fem does. "
-          "Tables: cases, references, classification, particle_classes, cpu_fit, candidates, guidelines, as CSV and as Markdown "
+          "Tables: cases, references, classification, particle_classes, cpu_fit, candidates, guidelines, discretization, "
+          "answer, few_hundred, as CSV and as Markdown "
           "beside this file; every chart as PNG and SVG.")
 
     doc.h(2, "Cost")
