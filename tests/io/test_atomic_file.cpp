@@ -58,7 +58,9 @@ TEST(AtomicFile, NeverReplacesAFolderAFifoOrADevice) {
     EXPECT_EQ(fs::symlink_status(dir / name).type(), before.type()) << name;
     EXPECT_NE(not_replaceable(dir / name), "") << name;
   }
-  if (device) EXPECT_EQ(not_replaceable(dir / "null"), "a device");
+  if (device) {
+    EXPECT_EQ(not_replaceable(dir / "null"), "a device");
+  }
   EXPECT_EQ(not_replaceable(dir / "folder"), "a folder");
   EXPECT_EQ(not_replaceable(dir / "link-to-fifo"), "a link to a FIFO");
   // No temporary was left beside them.
