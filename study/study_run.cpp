@@ -30,9 +30,10 @@
 #include "solver/geometry/write_mesh.hpp"
 #include "solver/io/atomic_file.hpp"
 #include "solver/io/json_file.hpp"
-#include "solver/run/run_fdem.hpp"
+#include "solver/run/prepared_meshes.hpp"
 #include "solver/run/run_scene.hpp"
 #include "solver/scene/scene.hpp"
+#include "solver/scene/write_scene.hpp"
 #include "study/study_meshes.hpp"
 
 namespace asperity::study {
@@ -211,83 +212,84 @@ std::pair<double, double> start_height(const StudyDef& def, const ParticlePlan& 
 // 1.32 times longer than the fem's for the same geometry). Those models' block gets a Young's
 // modulus kRigidBlock times its own, so E* = E/(1 − ν²) of the particle to 1e-6 relative.
 constexpr double kRigidBlock = 1e6;
-OJson block_json(const StudyDef& def, ModelKind m) {
-  OJson j = material_json(def.block_material);
-  if (is_sphere(m) || m == ModelKind::rigid) j["young"] = kRigidBlock * def.block_material.young;
-  return j;
+Material named(Material m, const std::string& name) {
+  m.name = name;
+  return m;
+}
+Material block_material(const StudyDef& def, ModelKind m) {
+  Material b = named(def.block_material, "block");
+  if (is_sphere(m) || m == ModelKind::rigid) b.young = kRigidBlock * def.block_material.young;
+  return b;
 }
 
-OJson case_scene(const StudyDef& def, const ParticlePlan& pp, const CaseKey& c) {
-  const auto [z, gap] = start_height(def, pp, c);
-  (void)gap;
+// The case's scene: the particle (a sphere, or its mesh at the case's resolution and element size,
+// out/meshes/P/N/surface.off) above the rigid block, in the model's contact law. Written as the
+// case's scene.json (scene::scene_json), which is what runs.
+scene::SceneDef case_scene(const StudyDef& def, const fs::path& out, const ParticlePlan& pp,
+                           const CaseKey& c) {
+  const double z = start_height(def, pp, c).first;
   const double half = 2 * pp.radius + 0.01,
                depth = 2 * pp.radius + 0.01;  // block: wider than the particle
-  OJson particle = {{"name", "particle"}, {"material", "particle"}};
-  long every = 1;
+  scene::SceneDef s;
+  s.name = c.particle + "-" + c.dir_name();
+  s.gravity = Vec3(0, 0, -def.gravity);
+  s.duration = pp.duration;
+  s.materials = {named(def.material, "particle"), block_material(def, c.model)};
+  scene::BodyDef particle{.name = "particle", .material = 0};
+  int every = 1;
   if (c.model == ModelKind::sphere) {
-    particle["shape"] = {{"type", "sphere"}, {"radius", pp.radius}};
+    particle.shape = scene::SphereShape{.radius = pp.radius};
   } else if (c.model == ModelKind::sphere_local) {
-    // The particle's mass on a sphere of the local radius: its own material (below).
-    particle["shape"] = {{"type", "sphere"}, {"radius", pp.local_radius}};
-    particle["material"] = "particle-local";
+    // The particle's mass on a sphere of the local radius: its own material.
+    Material local = named(def.material, "particle-local");
+    local.density = pp.mass / (4.0 / 3.0 * std::numbers::pi * std::pow(pp.local_radius, 3));
+    s.materials.push_back(local);
+    particle.shape = scene::SphereShape{.radius = pp.local_radius};
+    particle.material = 2;
   } else {
-    const fs::path rel = fs::path("..") / ".." / ".." / "meshes" / c.particle /
-                         std::to_string(c.resolution) / "surface.off";
-    particle["shape"] = {{"type", "mesh"}, {"file", rel.generic_string()}};
-    particle["model"] = c.model == ModelKind::fem ? "fem" : "rigid";
+    scene::MeshShape mesh{.file = out / "meshes" / c.particle / std::to_string(c.resolution) /
+                                  "surface.off"};
+    particle.model = c.model == ModelKind::fem ? scene::Model::fem : scene::Model::rigid;
     double dt = (c.model == ModelKind::fem ? pp.dt_fem : pp.dt_rigid).at(c.resolution);
     if (c.level > 0) {
       // Graded towards the strike point: h there, growing at the study's rate beyond
       // focus_radius·h (the Hertz gate's grading, reports/fem/hertz_convergence.md).
       const double h = c.relative_size * pp.radius;
-      const Vec3 focus = pp.lowest_point.at(c.resolution);
-      particle["shape"]["element_size"] = h;
-      particle["shape"]["element_size_focus"] = {focus.x(), focus.y(), focus.z()};
-      particle["shape"]["element_size_focus_radius"] = def.refinement.focus_radius * h;
-      particle["shape"]["element_size_growth"] = def.refinement.growth;
+      mesh.element_size = h;
+      mesh.element_size_focus = pp.lowest_point.at(c.resolution);
+      mesh.element_size_focus_radius = def.refinement.focus_radius * h;
+      mesh.element_size_growth = def.refinement.growth;
       // The rows kept: the step falls about as h over the surface edge (case_weight).
       dt *= std::min(1.0, c.relative_size / std::sqrt(29.0 / static_cast<double>(c.resolution)));
     }
-    every = std::max(1L, static_cast<long>(pp.duration / dt / def.rows));
+    particle.shape = mesh;
+    every = static_cast<int>(std::max(1L, static_cast<long>(pp.duration / dt / def.rows)));
   }
-  particle["position"] = {0.0, 0.0, z};
-  particle["velocity"] = {0.0, 0.0, -def.speed};
-  OJson scene = {
-      {"name", c.particle + "-" + c.dir_name()},
-      {"gravity", {0.0, 0.0, -def.gravity}},
-      {"duration", pp.duration},
-      {"dt", "auto"},
-      {"materials",
-       {{"particle", material_json(def.material)}, {"block", block_json(def, c.model)}}},
-      {"bodies",
-       {particle,
-        {{"name", "block"},
-         {"material", "block"},
-         {"shape",
-          {{"type", "box"}, {"min", {-half, -half, -depth}}, {"max", {half, half, 0.0}}}}}}},
-      {"contact",
-       {{"law", is_sphere(c.model)            ? "hertz"
-                : c.model == ModelKind::rigid ? "volume-hertz"
-                                              : "potential"}}},
-      {"record", {{"force_on", "particle"}, {"every", every}}}};
+  particle.position = Vec3(0, 0, z);
+  particle.velocity = Vec3(0, 0, -def.speed);
+  s.bodies = {
+      particle,
+      {.name = "block",
+       .material = 1,
+       .shape = scene::BoxShape{.min = Vec3(-half, -half, -depth), .max = Vec3(half, half, 0)},
+       .fixed = true}};
+  s.contact.law = is_sphere(c.model)            ? scene::ContactLaw::hertz
+                  : c.model == ModelKind::rigid ? scene::ContactLaw::volume_hertz
+                                                : scene::ContactLaw::potential;
   if (def.penalty_alpha && (c.model == ModelKind::fem || c.model == ModelKind::rigid_penalty)) {
-    scene["contact"]["penalty_alpha"] = *def.penalty_alpha;
+    s.contact.penalty_alpha = *def.penalty_alpha;
   }
   if (c.level > 0 && def.refinement.max_contact_factor > 0) {
     // A graded mesh's small surface faces under the study's explicit penalty can set a step far
     // below the elements' (rock_02 at growth 0.15: 1.26e-9 s against 3.6e-8 s); the factor lowers
     // the penalty of those faces alone (face-penalty, the scene default's way).
-    scene["contact"]["max_contact_factor"] = def.refinement.max_contact_factor;
+    s.contact.max_contact_factor = def.refinement.max_contact_factor;
   }
-  if (c.model == ModelKind::sphere_local) {
-    OJson local = material_json(def.material);
-    local["density"] = pp.mass / (4.0 / 3.0 * std::numbers::pi * std::pow(pp.local_radius, 3));
-    scene["materials"]["particle-local"] = local;
-  }
+  s.record = {.body = 0, .every = every};
   if (def.end_after_separation && !is_sphere(c.model)) {
-    scene["record"]["end_after_separation"] = *def.end_after_separation * pp.contact_time;
+    s.record.end_after_separation = *def.end_after_separation * pp.contact_time;
   }
-  return scene;
+  return s;
 }
 
 // Keeps about `rows` force and energy rows (every k-th, and the last): the summary's measures
@@ -684,7 +686,8 @@ cluster::TaskReport run_case(const StudyDef& def, const fs::path& out, const Par
           "the reference mesh is flat or concave at its lowest vertex: no "
           "local sphere");
     }
-    const std::string scene_text = case_scene(def, pp, c).dump(1) + "\n";
+    const std::string scene_text =
+        scene::scene_json(case_scene(def, out, pp, c), dir).dump(1) + "\n";
     if (fs::exists(dir / "case.json") && read_text(dir / "scene.json") == scene_text) {
       return {.skipped = true, .note = label + " (done before)"};
     }
@@ -701,11 +704,9 @@ cluster::TaskReport run_case(const StudyDef& def, const fs::path& out, const Par
     // what the case costs alone, whichever ran first.
     const double cpu = thread_cpu_seconds() - cpu0 + (run::kept_mesh_cpu_seconds() - kept0);
     thin_rows(result, def.rows);
-    // The run's own cpu_seconds counts the time loop only.
-    result.summary["cpu_seconds_thread"] = cpu;
-    // The element size at the strike point (m, null for the coarse default), as the scene set it.
-    result.summary["element_size"] = c.level > 0 ? OJson(c.relative_size * pp.radius) : OJson();
     run::write_outputs(result, dir);
+    // The study's own facts of the case (its CPU on this thread, where the run's cpu_seconds counts
+    // the time loop only; the element size at the strike point, m, null for the coarse default).
     OJson record = {
         {"particle", c.particle},
         {"model", model_name(c.model)},

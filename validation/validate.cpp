@@ -6,7 +6,6 @@
 #include <cstdio>
 #include <map>
 #include <set>
-#include <sstream>
 #include <system_error>
 #include <utility>
 #include <variant>
@@ -15,6 +14,7 @@
 #include "cluster/world.hpp"
 #include "solver/core/error.hpp"
 #include "solver/io/atomic_file.hpp"
+#include "solver/run/prepared_meshes.hpp"
 #include "solver/run/run_scene.hpp"
 #include "solver/run/stability_sweep.hpp"
 #include "validation/junit.hpp"
@@ -95,13 +95,13 @@ cluster::TaskReport run_one(const CaseDef& def, const std::optional<OtherSolver>
 
 // The order the cases are handed out in. Meshing a body's file is most of a validation's time
 // (7 s for the 2000-vertex hull, against 0.02 s of stepping), and a process keeps the meshes it
-// has made (run_fdem.cpp, PreparedMeshes): first the cases that mesh something no earlier case
+// has made (run/prepared_meshes.hpp): first the cases that mesh something no earlier case
 // meshes, the largest file first; then the cases without mesh bodies, in their order; last the
 // cases whose meshes are made by then, so that no worker waits for a mesh another is still making.
 std::vector<int> case_order(const std::vector<CaseDef>& cases) {
   std::vector<std::pair<std::uintmax_t, int>> first;  // (bytes of new mesh files, case)
   std::vector<int> plain, again;
-  std::set<std::string> meshed;
+  std::set<std::pair<std::string, run::MeshKey>> meshed;  // (file named, not read; its keys)
   for (std::size_t k = 0; k < cases.size(); ++k) {
     const scene::SceneDef& s = cases[k].scene;
     std::uintmax_t bytes = 0;
@@ -110,11 +110,12 @@ std::vector<int> case_order(const std::vector<CaseDef>& cases) {
       const auto* m = std::get_if<scene::MeshShape>(&b.shape);
       if (!m) continue;
       mesh = true;
-      // The keys that make one mesh (run_fdem.cpp's MeshKey, the file named rather than read).
-      std::ostringstream key;
-      key << m->file.lexically_normal().string() << '|' << m->faces << '|' << m->scale << '|'
-          << m->element_size << '|' << (b.model == scene::Model::fem && !b.fixed);
-      if (!meshed.insert(key.str()).second) continue;
+      if (!meshed
+               .emplace(m->file.lexically_normal().string(),
+                        run::mesh_key(*m, b.model == scene::Model::fem && !b.fixed))
+               .second) {
+        continue;
+      }
       std::error_code ec;
       const std::uintmax_t size = fs::file_size(m->file, ec);
       bytes += ec ? 0 : size;

@@ -22,12 +22,6 @@ RunResult run_fdem(const scene::SceneDef& scene, const RunOptions& options);
 // through the geometry pipeline and placed at its position, a box as its block, a plane as the
 // fixed slab under it), by scene body index: what a peer's translator must reproduce.
 std::vector<TetMesh> collision_meshes(const scene::SceneDef& scene);
-// The CPU seconds that the meshes this thread took from the process's prepared meshes (made for
-// an earlier scene with the same file and meshing keys, instead of making them again) cost the
-// thread that made them, summed over the thread's life. A caller that times a scene by its
-// thread's CPU adds this one's change across the call: the scene then costs what it would alone,
-// whichever scene made the mesh first (the study's cases, study_run.cpp).
-double kept_mesh_cpu_seconds();
 
 // The step run_fdem would take (world built, not stepped).
 StepChoice fdem_step(const scene::SceneDef& scene, const RunOptions& options);

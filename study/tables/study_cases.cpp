@@ -226,11 +226,11 @@ StudyCases load_study_cases(const StudyDef& def, const fs::path& dir) {
     c.key = k;
     c.dir = case_dir(dir, k);
     if (fs::exists(c.dir / "case.json")) {
-      const io::Json rec = io::read_json_file(c.dir / "case.json");
       c.summary = OJson::parse(io::read_json_file(c.dir / "summary.json").dump());
       c.status = c.summary.value("status", "missing");
-      c.cpu = c.summary.value("cpu_seconds_thread", std::nan(""));
-      c.start_gap = rec.value("start_gap", std::nan(""));
+      c.record = OJson::parse(io::read_json_file(c.dir / "case.json").dump());
+      c.cpu = c.record.value("cpu_seconds", std::nan(""));
+      c.start_gap = c.record.value("start_gap", std::nan(""));
       ++s.done;
     } else if (fs::exists(c.dir / "failed.json")) {
       c.status = "failed";

@@ -24,6 +24,7 @@ struct CaseData {
   std::string status;  // "ok", "unstable", "no_contact", "failed", "missing"
   std::string message;
   OJson summary, mesh;
+  OJson record;  // case.json: the study's facts of the case (cpu_seconds, element_size, start_gap)
   double cpu = std::nan("");
   double start_gap = std::nan("");
   std::filesystem::path dir;

@@ -1,10 +1,11 @@
-// The meshes a process keeps (run_fdem.cpp, PreparedMeshes): a scene that takes a mesh an earlier
-// scene made is charged what making it cost (kept_mesh_cpu_seconds), so that a study case costs
-// the same whichever case of its mesh ran first.
+// The meshes a process keeps (run/prepared_meshes.hpp, PreparedMeshes): a scene that takes a mesh
+// an earlier scene made is charged what making it cost (kept_mesh_cpu_seconds), so that a study
+// case costs the same whichever case of its mesh ran first.
 #include <gtest/gtest.h>
 
 #include "scenes/particle_block_impact.hpp"
 #include "solver/core/clock.hpp"
+#include "solver/run/prepared_meshes.hpp"
 #include "solver/run/run_fdem.hpp"
 
 namespace asperity::run {

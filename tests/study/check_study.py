@@ -108,7 +108,7 @@ for name in pngs:
 cases = tables.get("cases.csv", [])
 check(f"cases.csv: {NCASES} rows", len(cases) == NCASES, len(cases))
 keys = {"peak_force": "peak_force", "impulse": "impulse", "contact_duration": "contact_duration",
-        "first_contact_time": "first_contact_time", "cpu_seconds": "cpu_seconds_thread", "steps": "steps", "dt": "dt"}
+        "first_contact_time": "first_contact_time", "steps": "steps", "dt": "dt"}
 summaries = {}
 for row in cases:
     h = f"h{float(row['element_size_rel']):g}-" if row["element_size_rel"] else ""
@@ -118,11 +118,20 @@ for row in cases:
     with open(os.path.join(study, "cases", row["particle"], folder, "summary.json")) as f:
         s = json.load(f)
     summaries[(row["particle"], folder)] = s
-    # the element size: empty for the coarse default, else the value the case ran with
-    check(f"{row['particle']} {folder} element_size equals summary.json",
-          (row["element_size"] == "" and s["element_size"] is None) or
-          (row["element_size"] != "" and float(row["element_size"]) == s["element_size"]),
-          (row["element_size"], s.get("element_size")))
+    with open(os.path.join(study, "cases", row["particle"], folder, "case.json")) as f:
+        record = json.load(f)
+    # the study's own facts go to case.json, the runner's summary.json keeps the contract's keys
+    check(f"{row['particle']} {folder} summary.json has no study keys",
+          "element_size" not in s and "cpu_seconds_thread" not in s, sorted(set(s) & {"element_size", "cpu_seconds_thread"}))
+    # the element size: empty for the coarse default, else the value the case ran with (its scene's)
+    with open(os.path.join(study, "cases", row["particle"], folder, "scene.json")) as f:
+        ran_with = json.load(f)["bodies"][0]["shape"].get("element_size")
+    check(f"{row['particle']} {folder} element_size equals case.json and scene.json",
+          (row["element_size"] == "" and record["element_size"] is None and ran_with is None) or
+          (row["element_size"] != "" and float(row["element_size"]) == record["element_size"] == ran_with),
+          (row["element_size"], record.get("element_size"), ran_with))
+    check(f"{row['particle']} {folder} cpu_seconds equals case.json", float(row["cpu_seconds"]) == float(record["cpu_seconds"]),
+          (row["cpu_seconds"], record["cpu_seconds"]))
     for col, key in keys.items():
         # exact: the table writes the shortest decimal that reads back to the same double
         check(f"{row['particle']} {folder} {col} equals summary.json", float(row[col]) == float(s[key]),

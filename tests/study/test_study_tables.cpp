@@ -164,7 +164,8 @@ TEST(Richardson, NonMonotoneThreeLevelsFallBackToTheBracket) {
 // resolution that was refined, on hand-made case folders with known values.
 namespace geometry_term_tests {
 
-// A finished case: case.json (the done marker) and summary.json with the measures.
+// A finished case: case.json (the done marker, with the study's facts) and summary.json with the
+// measures.
 void write_case(const fs::path& study, const CaseKey& k, double peak, double impulse,
                 double duration) {
   const fs::path dir = study / "cases" / k.particle / k.dir_name();
@@ -174,9 +175,8 @@ void write_case(const fs::path& study, const CaseKey& k, double peak, double imp
       {"peak_force", peak},
       {"impulse", impulse},
       {"contact_duration", duration},
-      {"first_contact_time", 5e-5},
-      {"cpu_seconds_thread", 1.0}}.dump();
-  std::ofstream(dir / "case.json") << OJson{{"start_gap", 1e-4}}.dump();
+      {"first_contact_time", 5e-5}}.dump();
+  std::ofstream(dir / "case.json") << OJson{{"start_gap", 1e-4}, {"cpu_seconds", 1.0}}.dump();
 }
 
 // Two refined levels at h = 0.08 and 0.04 R (sizes halving): the limit is the middle of the
