@@ -45,11 +45,13 @@ TEST(RunawayPenetration, SoftPenaltyFastImpactIsFlagged) {
 }
 
 // A block 1 m deep has elements hundreds of times larger than the particle's, so the particle can
-// sink its own size into a far too soft penalty (1e4 Pa) while the overlap is still a small part
-// of the block element's height: the second half of the criterion, the particle's centre inside
-// the block, stops it.
+// sink its own size into a far too soft penalty (6e4 Pa: 1.2e-6 E, just above the scene loader's
+// lower bound of 1e-6 E; at 3 m/s, 9 times the kinetic energy of 1 m/s, for a penalty 6 times the
+// 1e4 Pa this test used before that bound) while the overlap is still a small part of the block
+// element's height:
+// the second half of the criterion, the particle's centre inside the block, stops it.
 TEST(RunawayPenetration, BodySinkingIntoABlockIsFlaggedByItsCentre) {
-  const RunResult r = impact("sinking", "rigid", 1.0, 1e4, true, 0.05);
+  const RunResult r = impact("sinking", "rigid", 3.0, 6e4, true, 0.05);
   EXPECT_EQ(r.status, "unstable");
   EXPECT_EQ(r.message.rfind(R"(runaway penetration: body "particle" passed through "block")", 0),
             0u)
