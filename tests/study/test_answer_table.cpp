@@ -86,7 +86,8 @@ TEST(Answer, ReferenceUncertaintyAboveTheToleranceStillResolves) {
   // with its error ± 6 % beside it (the row states the doubt; it does not withhold the answer).
   const std::vector<CandidateStats> stats = field();
   const std::map<std::string, std::pair<double, double>> u = {{"peak_force", {0.03, 0.06}}};
-  const AnswerRow& r = row(answer_rows(stats, Placement::lowest, u), "peak_force", 0.05, true);
+  const std::vector<AnswerRow> rows = answer_rows(stats, Placement::lowest, u);
+  const AnswerRow& r = row(rows, "peak_force", 0.05, true);
   EXPECT_TRUE(r.met);
   EXPECT_EQ(r.pick, &stats[3]);
   EXPECT_EQ(r.reference_uncertainty, 0.06);
