@@ -20,6 +20,7 @@
 
 #include "peers/lammps_family.hpp"
 #include "peers/peer_adapters.hpp"
+#include "solver/scene/resolve.hpp"
 
 namespace asperity::peers {
 namespace {
@@ -56,7 +57,7 @@ std::string model(const scene::SceneDef& s, int a, int b) {
   const double zeta = pair_zeta(s, a, b), m = mass_eff(s, a, b), mu = pair_friction(s, a, b);
   std::ostringstream o;
   if (s.contact.law == scene::ContactLaw::linear) {
-    const double kn = *s.contact.kn, kt = s.contact.kt.value_or(2.0 / 7.0 * kn);
+    const double kn = *s.contact.kn, kt = scene::linear_kt(s.contact);
     o << "hooke " << num(kn) << ' ' << num(zeta * std::sqrt(m * kn))
       << " tangential linear_history " << num(kt) << ' ' << num(std::sqrt(kt / kn)) << ' '
       << num(mu) << " damping velocity limit_damping";

@@ -4,12 +4,12 @@
 #include <cmath>
 #include <cstdio>
 #include <fstream>
-#include <numbers>
+#include <limits>
 #include <sstream>
 
 #include "peers/peer_adapters.hpp"
-#include "solver/contact/restitution_damping.hpp"
 #include "solver/core/error.hpp"
+#include "solver/scene/resolve.hpp"
 
 namespace asperity::peers::lammps_family {
 namespace fs = std::filesystem;
@@ -70,38 +70,32 @@ AxisPlane axis_plane(const scene::PlaneShape& p) {
   return out;
 }
 
-double sphere_mass(const scene::SceneDef& s, int body) {
-  const auto& b = s.bodies[body];
-  const double r = std::get<scene::SphereShape>(b.shape).radius;
-  return s.materials[b.material].density * 4.0 / 3.0 * std::numbers::pi * r * r * r;
+double mass_eff(const scene::SceneDef& s, int sphere, int other) {
+  const bool ball = std::holds_alternative<scene::SphereShape>(s.bodies[other].shape);
+  return effective_mass(
+      scene::sphere_mass(s, sphere),
+      ball ? scene::sphere_mass(s, other) : std::numeric_limits<double>::infinity());
 }
 
-double mass_eff(const scene::SceneDef& s, int sphere, int other) {
-  const double m1 = sphere_mass(s, sphere);
-  if (!std::holds_alternative<scene::SphereShape>(s.bodies[other].shape)) return m1;
-  const double m2 = sphere_mass(s, other);
-  return m1 * m2 / (m1 + m2);
+namespace {
+scene::PairConstants pair_of(const scene::SceneDef& s, int a, int b) {
+  return scene::pair_constants(s.contact, s.materials[s.bodies[a].material],
+                               s.materials[s.bodies[b].material]);
 }
+}  // namespace
 
 double pair_zeta(const scene::SceneDef& s, int a, int b) {
-  const Material &ma = s.materials[s.bodies[a].material], &mb = s.materials[s.bodies[b].material];
-  const double e = s.contact.restitution.value_or(pair_restitution(ma, mb));
-  return contact::damping_for_restitution(s.contact.law == scene::ContactLaw::linear
-                                              ? contact::NormalLaw::linear
-                                              : contact::NormalLaw::hertz,
-                                          e);
+  return pair_of(s, a, b).zeta;
 }
-
 double pair_young_eff(const scene::SceneDef& s, int a, int b) {
-  return effective_young(s.materials[s.bodies[a].material], s.materials[s.bodies[b].material]);
+  return pair_of(s, a, b).young_eff;
 }
 double pair_shear_eff(const scene::SceneDef& s, int a, int b) {
-  return effective_shear(s.materials[s.bodies[a].material], s.materials[s.bodies[b].material]);
+  return pair_of(s, a, b).shear_eff;
 }
 double pair_friction(const scene::SceneDef& s, int a, int b) {
   if (s.contact.law == scene::ContactLaw::hertz) return 0;  // no tangential force
-  return s.contact.friction.value_or(asperity::pair_friction(s.materials[s.bodies[a].material],
-                                                             s.materials[s.bodies[b].material]));
+  return pair_of(s, a, b).friction;
 }
 
 std::string num(double x) {
@@ -116,7 +110,7 @@ Types atom_types(const scene::SceneDef& s, bool typed_planes) {
   const bool linear = s.contact.law == scene::ContactLaw::linear;
   std::vector<std::pair<int, double>> keys;  // (material, mass under linear) of each type
   for (int b : t.spheres) {
-    const std::pair<int, double> key{s.bodies[b].material, linear ? sphere_mass(s, b) : 0.0};
+    const std::pair<int, double> key{s.bodies[b].material, linear ? scene::sphere_mass(s, b) : 0.0};
     std::size_t k = 0;
     while (k < keys.size() && keys[k] != key) ++k;
     if (k == keys.size()) {
@@ -338,7 +332,7 @@ PeerTrace run(const Dialect& d, const scene::SceneDef& s, const Resolved& r, con
     std::size_t rec_atom = 0;
     for (std::size_t k = 0; k < types.spheres.size(); ++k)
       if (types.spheres[k] == rec) rec_atom = k;
-    const double rec_mass = rec_is_plane ? 0.0 : sphere_mass(s, rec);
+    const double rec_mass = rec_is_plane ? 0.0 : scene::sphere_mass(s, rec);
     auto force = [&](const std::vector<std::vector<double>>& rows) -> Vec3 {
       if (rec_is_plane) {
         Vec3 f = Vec3::Zero();

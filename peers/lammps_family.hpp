@@ -23,9 +23,9 @@ struct AxisPlane {
 };
 AxisPlane axis_plane(const scene::PlaneShape& p);
 
-// Effective mass of a free sphere against body b (a plane: the sphere's own mass), kg.
+// Effective mass of a free sphere against body b (a plane: the sphere's own mass), kg (a sphere's
+// own mass: scene::sphere_mass, solver/scene/resolve.hpp).
 double mass_eff(const scene::SceneDef& s, int sphere, int other);
-double sphere_mass(const scene::SceneDef& s, int body);
 
 // The damping ζ asperity uses for the material pair of bodies a and b (its Tsuji or linear form).
 double pair_zeta(const scene::SceneDef& s, int a, int b);

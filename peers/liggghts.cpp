@@ -19,6 +19,7 @@
 
 #include "peers/lammps_family.hpp"
 #include "peers/peer_adapters.hpp"
+#include "solver/scene/resolve.hpp"
 
 namespace asperity::peers {
 namespace {
@@ -84,7 +85,7 @@ std::string setup(const scene::SceneDef& s, const lammps_family::Types& types,
   per_pair(
       "coefficientFriction", [&](int a, int b) { return pair_friction(s, a, b); }, 0.0);
   if (linear) {
-    const double kn = *s.contact.kn, kt = s.contact.kt.value_or(2.0 / 7.0 * kn);
+    const double kn = *s.contact.kn, kt = scene::linear_kt(s.contact);
     per_pair(
         "kn", [&](int, int) { return kn; }, kn);
     per_pair(

@@ -11,8 +11,8 @@
 
 #include "peers/peer_adapters.hpp"
 #include "peers/yade_polyhedra_input.hpp"
-#include "solver/contact/restitution_damping.hpp"
 #include "solver/core/error.hpp"
+#include "solver/scene/resolve.hpp"
 
 #ifndef ASPERITY_YADE_SCRIPT
 #error "ASPERITY_YADE_SCRIPT (path of peers/scene_to_yade.py) must be defined by the build"
@@ -68,10 +68,9 @@ Json yade_input(const scene::SceneDef& s, const Resolved& r) {
   j["law"] = s.contact.law == scene::ContactLaw::hertz           ? "hertz"
              : s.contact.law == scene::ContactLaw::hertz_mindlin ? "hertz-mindlin"
                                                                  : "linear";
-  const contact::NormalLaw normal = linear ? contact::NormalLaw::linear : contact::NormalLaw::hertz;
   if (linear) {
     j["kn"] = *s.contact.kn;
-    j["kt"] = s.contact.kt.value_or(2.0 / 7.0 * *s.contact.kn);  // asperity's default
+    j["kt"] = scene::linear_kt(s.contact);
   }
   // The hertz law has no tangential force: friction 0 caps YADE's shear force at zero.
   if (s.contact.law == scene::ContactLaw::hertz)
@@ -91,11 +90,10 @@ Json yade_input(const scene::SceneDef& s, const Resolved& r) {
   j["pairs"] = Json::array();
   for (std::size_t a = 0; a < s.materials.size(); ++a) {
     for (std::size_t b = a; b < s.materials.size(); ++b) {
-      const double e =
-          s.contact.restitution.value_or(pair_restitution(s.materials[a], s.materials[b]));
-      j["pairs"].push_back({{"a", s.materials[a].name},
-                            {"b", s.materials[b].name},
-                            {"zeta", contact::damping_for_restitution(normal, e)}});
+      j["pairs"].push_back(
+          {{"a", s.materials[a].name},
+           {"b", s.materials[b].name},
+           {"zeta", scene::pair_constants(s.contact, s.materials[a], s.materials[b]).zeta}});
     }
   }
   j["bodies"] = Json::array();

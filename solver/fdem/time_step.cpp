@@ -13,6 +13,7 @@
 
 #include "solver/contact/volume_hertz.hpp"
 #include "solver/core/central_difference.hpp"
+#include "solver/core/effective_mass.hpp"
 
 namespace asperity::fdem {
 
@@ -367,9 +368,7 @@ CriticalStep volume_critical_step(const World& w) {
     for (std::size_t j = 0; j < w.bodies.size(); ++j) {
       if (j == i) continue;
       const Body &bi = w.bodies[i], &bj = w.bodies[j];
-      const double m = std::isinf(mass_eff[j])
-                           ? mass_eff[i]
-                           : mass_eff[i] * mass_eff[j] / (mass_eff[i] + mass_eff[j]);
+      const double m = effective_mass(mass_eff[i], mass_eff[j]);
       const double v = speed[i] + speed[j] + fall;
       double k = 0;
       if (w.law == ContactLaw::volume_hertz) {

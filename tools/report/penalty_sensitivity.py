@@ -26,12 +26,16 @@ from tabular import read_csv  # noqa: E402  (beside this file)
 
 def read_study(folder):
     rows = [r for r in read_csv(os.path.join(folder, "cases.csv")) if r["status"] == "ok"]
+    # The particle's Young's modulus as the study wrote it (study.json), for a summary older than
+    # its penalty_alpha key: the C++ owns E, this script does not type it.
+    with open(os.path.join(folder, "study.json")) as f:
+        young = json.load(f)["material"]["young"]
     out = []
     for r in rows:
         case = f"{r['model']}-{r['resolution']}-{r['placement']}"
         with open(os.path.join(folder, "cases", r["particle"], case, "summary.json")) as f:
             s = json.load(f)
-        alpha = s["penalty"] / 5e10 if s.get("penalty_alpha") is None else s["penalty_alpha"]
+        alpha = s["penalty"] / young if s.get("penalty_alpha") is None else s["penalty_alpha"]
         out.append({"particle": r["particle"], "model": r["model"],
                     "resolution": int(r["resolution"]), "alpha": round(alpha, 6),
                     "peak_force": float(r["peak_force"]), "impulse": float(r["impulse"]),
