@@ -61,7 +61,7 @@ struct PotentialPairForce {
 // What the kernel needs of each element besides its nodes: its barycentric map
 // L_{1..3} = B (x − x₀), L₀ = 1 − ΣL, and the gradients of L₀..L₃. A function of the element's
 // current nodes only, so a caller that meets one element in several pairs within a step (a
-// block's large tetrahedra meet hundreds) computes it once (fdem/fdem_world.cpp).
+// block's large tetrahedra meet hundreds) computes it once (fdem/potential_contact.cpp).
 struct TetFrame {
   Vec3 origin;
   Mat3 b;

@@ -7,9 +7,9 @@
 // Unlike volume-hertz this force is not the gradient of a function of V (that would need
 // F = W'(V) |S|, and k_v V / |S| is not a function of V alone); along one fixed direction, as in a
 // straight drop, it is conservative all the same (F depends on the approach δ only). Its energy is
-// therefore accumulated as ∫ s dV with s = k_v V/|S| (fdem_world.cpp), exact for translations;
-// the torque is the force's at the overlap's centroid, as YADE applies it, which makes a spinning
-// contact not exactly conservative. Exponents of F(δ): vertex 3, edge 2, face 1.
+// therefore accumulated as ∫ s dV with s = k_v V/|S| (fdem/volume_contact.cpp), exact for
+// translations; the torque is the force's at the overlap's centroid, as YADE applies it, which
+// makes a spinning contact not exactly conservative. Exponents of F(δ): vertex 3, edge 2, face 1.
 #pragma once
 
 #include "solver/core/vec.hpp"

@@ -41,7 +41,7 @@ struct BodyDef {
 // contact/volume_linear.hpp, geometry in contact/overlap_volume.hpp).
 enum class ContactLaw : std::uint8_t { potential, volume_hertz, volume_linear };
 
-// How a world meets ContactDef::max_contact_factor (issue 11, item 5; fdem/time_step.hpp, the
+// How a world meets ContactDef::max_contact_factor (issue 11, item 5; fdem/contact_step.hpp, the
 // accuracy of each in reports/fem/mesh_step.md):
 //   penalty: the one penalty p lowered for every face (limit_penalty);
 //   face_penalty: p lowered only on the faces whose nodes set the step, each by what its nodes
@@ -70,7 +70,7 @@ struct ContactDef {
   double penalty = 0;   // Pa, overrides alpha when > 0
   double friction = 0;  // Coulomb μ
   // > 0: where the penalty contact would pull a deformable body's predicted step more than this
-  // factor below its elements' own limit, contact_step_fix gives way (fdem/time_step.hpp; issue
+  // factor below its elements' own limit, contact_step_fix gives way (fdem/contact_step.hpp; issue
   // 11). Scenes that give neither penalty nor penalty_alpha get 2 by face_penalty
   // (run/run_fdem.cpp); 0 (here the default): p as asked.
   double max_contact_factor = 0;

@@ -14,6 +14,7 @@
 #include "solver/contact/volume_hertz.hpp"
 #include "solver/core/central_difference.hpp"
 #include "solver/core/effective_mass.hpp"
+#include "solver/fdem/world_phases.hpp"
 
 namespace asperity::fdem {
 
@@ -34,42 +35,6 @@ double face_weight(int i, int j) {
 
 int face_body(const World& w, int f) {
   return w.node_body[w.face_nodes(0, f)];
-}
-
-// The penalty spring of every surface face of deformable body `body`, as extra stiffness of the
-// element that owns the face.
-std::vector<fem::ElementExtraStiffness> face_springs(
-    const World& w, int body, const std::vector<double>* face_scale = nullptr) {
-  const fem::TetElements& e = w.elements[w.bodies[body].elements];
-  std::map<Key, std::pair<int, int>> owner;  // face → (element, the local node left out)
-  for (int t = 0; t < e.size(); ++t) {
-    for (int skip = 0; skip < 4; ++skip) {
-      int n[3], j = 0;
-      for (int a = 0; a < 4; ++a) {
-        if (a != skip) n[j++] = e.tets(a, t);
-      }
-      owner[sorted_key(n[0], n[1], n[2])] = {t, skip};
-    }
-  }
-  std::vector<fem::ElementExtraStiffness> out;
-  for (Eigen::Index f = 0; f < w.face_nodes.cols(); ++f) {
-    if (face_body(w, static_cast<int>(f)) != body) continue;
-    const auto it =
-        owner.find(sorted_key(w.face_nodes(0, f), w.face_nodes(1, f), w.face_nodes(2, f)));
-    if (it == owner.end()) continue;  // make_world checked that every face has its element
-    const int t = it->second.first;
-    fem::ElementExtraStiffness x{.element = t, .k = Eigen::Matrix<double, 12, 12>::Zero()};
-    for (int a = 0; a < 4; ++a) {
-      for (int b = 0; b < 4; ++b) {
-        if (a == it->second.second || b == it->second.second) continue;
-        const double k =
-            w.face_stiffness[f] * (face_scale ? (*face_scale)[static_cast<std::size_t>(f)] : 1.0);
-        x.k.block<3, 3>(3 * a, 3 * b) = k * face_weight(a, b) * Mat3::Identity();
-      }
-    }
-    out.push_back(x);
-  }
-  return out;
 }
 
 // The part of triangle p where the linear function with vertex values d is ≥ 0 (up to four
@@ -187,6 +152,48 @@ double damped_step(double omega, double beta) {
 }
 
 }  // namespace
+
+namespace detail {
+
+// The penalty spring of every surface face of deformable body `body`, as extra stiffness of the
+// element that owns the face.
+std::vector<fem::ElementExtraStiffness> face_springs(const World& w, int body,
+                                                     const std::vector<double>* face_scale) {
+  const fem::TetElements& e = w.elements[w.bodies[body].elements];
+  std::map<Key, std::pair<int, int>> owner;  // face → (element, the local node left out)
+  for (int t = 0; t < e.size(); ++t) {
+    for (int skip = 0; skip < 4; ++skip) {
+      int n[3], j = 0;
+      for (int a = 0; a < 4; ++a) {
+        if (a != skip) n[j++] = e.tets(a, t);
+      }
+      owner[sorted_key(n[0], n[1], n[2])] = {t, skip};
+    }
+  }
+  std::vector<fem::ElementExtraStiffness> out;
+  for (Eigen::Index f = 0; f < w.face_nodes.cols(); ++f) {
+    if (face_body(w, static_cast<int>(f)) != body) continue;
+    const auto it =
+        owner.find(sorted_key(w.face_nodes(0, f), w.face_nodes(1, f), w.face_nodes(2, f)));
+    if (it == owner.end()) continue;  // make_world checked that every face has its element
+    const int t = it->second.first;
+    fem::ElementExtraStiffness x{.element = t, .k = Eigen::Matrix<double, 12, 12>::Zero()};
+    for (int a = 0; a < 4; ++a) {
+      for (int b = 0; b < 4; ++b) {
+        if (a == it->second.second || b == it->second.second) continue;
+        const double k =
+            w.face_stiffness[f] * (face_scale ? (*face_scale)[static_cast<std::size_t>(f)] : 1.0);
+        x.k.block<3, 3>(3 * a, 3 * b) = k * face_weight(a, b) * Mat3::Identity();
+      }
+    }
+    out.push_back(x);
+  }
+  return out;
+}
+
+}  // namespace detail
+
+using detail::face_springs;
 
 ContactFaces rigid_contact_faces(const World& w, int rigid) {
   const RigidBody& rb = w.rigid[rigid];
@@ -401,236 +408,6 @@ CriticalStep volume_critical_step(const World& w) {
   return out;
 }
 }  // namespace
-
-namespace {
-
-// Deformable body `b` with its face springs scaled by s: the damped step of elements and
-// contact together, the smaller of the mass-split bound and Weyl's sum (critical_step).
-struct BodySteps {
-  fem::ElementStep element;
-  double gershgorin = 0;  // max over nodes of Σ (k_f/3) / m
-  std::vector<fem::ElementExtraStiffness> springs;
-};
-BodySteps body_steps(const World& w, int b, const std::vector<double>& k_row) {
-  const Body& body = w.bodies[static_cast<std::size_t>(b)];
-  const fem::TetElements& e = w.elements[body.elements];
-  BodySteps out{.element = fem::element_critical_step(e, {}, w.added_mass),
-                .springs = face_springs(w, b)};
-  for (int i = body.node_begin; i < body.node_end; ++i) {
-    if (w.mass[i] > 0) out.gershgorin = std::max(out.gershgorin, k_row[i] / w.mass[i]);
-  }
-  return out;
-}
-double combined_omega(const World& w, int b, const BodySteps& s, double scale) {
-  const fem::TetElements& e = w.elements[w.bodies[static_cast<std::size_t>(b)].elements];
-  std::vector<fem::ElementExtraStiffness> springs = s.springs;
-  for (fem::ElementExtraStiffness& x : springs) x.k *= scale;
-  const double weyl2 = s.element.omega_max * s.element.omega_max + scale * s.gershgorin;
-  const fem::ElementStep both = fem::element_critical_step(e, springs, w.added_mass);
-  return std::sqrt(std::min(weyl2, both.omega_max * both.omega_max));
-}
-std::vector<double> face_rows(const World& w) {
-  std::vector<double> k_row(w.node_count(), 0.0);
-  for (Eigen::Index f = 0; f < w.face_nodes.cols(); ++f) {
-    for (int i = 0; i < 3; ++i) k_row[w.face_nodes(i, f)] += w.face_stiffness[f] / 3.0;
-  }
-  return k_row;
-}
-
-// How close to the factor the searches below stop, as a fraction of it: the contact factor met
-// lies in [(1 − kMeetTolerance) factor, factor] unless their six steps run out first (1.92–1.96
-// of 2 on 4 of the 161 lowered meshes of the bench_fem set). Each evaluation is one element step
-// bound (up to nine λ_max per element: a closed form, or a 12×12 eigen-solve where a face spring
-// sits), and the last few of the six mostly moved
-// the factor in its third digit: stopping at 2 % took the set-up (make_world + critical_step) of
-// the bench_fem collision at 1000 triangles from 0.91, 0.84, 0.59 to 0.62, 0.60, 0.35 s of CPU on
-// the three of five particles whose faces it lowers (BM_CollisionSetup; reports/fem/mesh_step.md).
-constexpr double kMeetTolerance = 0.02;
-
-// Illinois regula falsi for the largest x in [lo, hi] with g(x) ≤ 0, given g(lo) ≤ 0 < g(hi):
-// at most six evaluations, fewer once the kept x is within `tolerance` of meeting it exactly
-// (g(lo) ≥ −tolerance); the last x that met it.
-template <class G>
-double largest_meeting(G g, double lo, double hi, double g_lo, double g_hi, double tolerance) {
-  int side = 0;  // Illinois: halve the kept end's value when the same end is kept twice
-  for (int it = 0; it < 6 && g_lo < -tolerance; ++it) {
-    const double x = lo - g_lo * (hi - lo) / (g_hi - g_lo);
-    const double gx = g(x);
-    if (gx <= 0) {
-      lo = x, g_lo = gx;
-      if (side == -1) g_hi *= 0.5;
-      side = -1;
-    } else {
-      hi = x, g_hi = gx;
-      if (side == 1) g_lo *= 0.5;
-      side = 1;
-    }
-  }
-  return lo;
-}
-
-}  // namespace
-
-double limit_penalty(World& w, double factor) {
-  const std::vector<double> k_row = face_rows(w);
-  double scale = 1;
-  for (std::size_t b = 0; b < w.bodies.size(); ++b) {
-    if (w.bodies[b].kind != BodyKind::deformable) continue;
-    const int bi = static_cast<int>(b);
-    const BodySteps s = body_steps(w, bi, k_row);
-    // Undamped: ω(x)/ω_element − factor, so that a body's damping_ratio does not move its penalty.
-    auto excess = [&](double x) {
-      return combined_omega(w, bi, s, x) / s.element.omega_max - factor;
-    };
-    const double f_hi = excess(1);
-    if (f_hi <= 0) continue;
-    scale =
-        std::min(scale, largest_meeting(excess, 0, 1, 1 - factor, f_hi, kMeetTolerance * factor));
-  }
-  if (scale < 1) {
-    w.penalty *= scale;
-    for (double& k : w.face_stiffness) k *= scale;
-  }
-  return scale;
-}
-
-namespace {
-
-// What limit_face_penalty and scale_contact_mass share for one deformable body: its element
-// bound ω_e (unscaled), its nodes' face rows c_i, and the γ where the factor is met: γ_lo =
-// factor² − 1 (Weyl) and γ_hi, where nothing is scaled (the largest c_i / (m_i ω_e²)).
-struct LocalLimit {
-  double omega_e2 = 0, gamma_lo = 0, gamma_hi = 0;
-};
-LocalLimit local_limit(const World& w, const Body& body, const std::vector<double>& k_row,
-                       double omega_e, double factor) {
-  LocalLimit out{.omega_e2 = omega_e * omega_e, .gamma_lo = factor * factor - 1};
-  for (int i = body.node_begin; i < body.node_end; ++i) {
-    if (w.mass[i] > 0) out.gamma_hi = std::max(out.gamma_hi, k_row[i] / (w.mass[i] * out.omega_e2));
-  }
-  return out;
-}
-
-}  // namespace
-
-double limit_face_penalty(World& w, double factor) {
-  const std::vector<double> k_row = face_rows(w);
-  std::vector<double> node_scale(static_cast<std::size_t>(w.node_count()), 1.0);
-  const auto n_faces = static_cast<std::size_t>(w.face_nodes.cols());
-  std::vector<double> face_scale(n_faces, 1.0);
-  // Node and face scales of body b at γ (faces of other bodies keep theirs).
-  auto set_scales = [&](const Body& body, const LocalLimit& l, double gamma) {
-    for (int i = body.node_begin; i < body.node_end; ++i) {
-      node_scale[i] = k_row[i] > 0 ? std::min(1.0, gamma * l.omega_e2 * w.mass[i] / k_row[i]) : 1.0;
-    }
-    for (std::size_t f = 0; f < n_faces; ++f) {
-      const auto fi = static_cast<Eigen::Index>(f);
-      if (w.node_body[w.face_nodes(0, fi)] != &body - w.bodies.data()) continue;
-      face_scale[f] = std::min({node_scale[w.face_nodes(0, fi)], node_scale[w.face_nodes(1, fi)],
-                                node_scale[w.face_nodes(2, fi)]});
-    }
-  };
-  bool changed = false;
-  for (std::size_t b = 0; b < w.bodies.size(); ++b) {
-    const Body& body = w.bodies[b];
-    if (body.kind != BodyKind::deformable) continue;
-    const fem::TetElements& e = w.elements[body.elements];
-    const double omega_e = fem::element_critical_step(e, {}, w.added_mass).omega_max;
-    const LocalLimit l = local_limit(w, body, k_row, omega_e, factor);
-    // Undamped ω(γ)/ω_e − factor, the smaller of the mass-split and Weyl bounds as critical_step.
-    auto excess = [&](double gamma) {
-      set_scales(body, l, gamma);
-      std::vector<double> row(k_row.size(), 0.0);
-      for (std::size_t f = 0; f < n_faces; ++f) {
-        for (int i = 0; i < 3; ++i) {
-          row[w.face_nodes(i, static_cast<Eigen::Index>(f))] +=
-              face_scale[f] * w.face_stiffness[f] / 3.0;
-        }
-      }
-      double gershgorin = 0;
-      for (int i = body.node_begin; i < body.node_end; ++i) {
-        if (w.mass[i] > 0) gershgorin = std::max(gershgorin, row[i] / w.mass[i]);
-      }
-      const fem::ElementStep both = fem::element_critical_step(
-          e, face_springs(w, static_cast<int>(b), &face_scale), w.added_mass);
-      const double omega2 = std::min(l.omega_e2 + gershgorin, both.omega_max * both.omega_max);
-      return std::sqrt(omega2 / l.omega_e2) - factor;
-    };
-    const double g_hi = excess(l.gamma_hi);
-    if (g_hi <= 0 || !(l.gamma_hi > l.gamma_lo)) {
-      set_scales(body, l, std::max(l.gamma_hi, l.gamma_lo));
-      continue;
-    }
-    const double g_lo = excess(l.gamma_lo);
-    set_scales(body, l,
-               largest_meeting(excess, l.gamma_lo, l.gamma_hi, std::min(g_lo, 0.0), g_hi,
-                               kMeetTolerance * factor));
-    changed = true;
-  }
-  if (!changed) return 1;
-  w.tet_penalty_scale.assign(static_cast<std::size_t>(w.surface_tets.cols()), 1.0);
-  for (Eigen::Index t = 0; t < w.surface_tets.cols(); ++t) {
-    double s = 1;
-    for (int i = 0; i < 4; ++i) s = std::min(s, node_scale[w.surface_tets(i, t)]);
-    w.tet_penalty_scale[static_cast<std::size_t>(t)] = s;
-  }
-  double least = 1;
-  for (std::size_t f = 0; f < n_faces; ++f) {
-    w.face_stiffness[f] *= face_scale[f];
-    least = std::min(least, face_scale[f]);
-  }
-  return least;
-}
-
-double scale_contact_mass(World& w, double factor) {
-  const std::vector<double> k_row = face_rows(w);
-  const auto n = static_cast<std::size_t>(w.node_count());
-  std::vector<double> added(n, 0.0);
-  double largest = 0;
-  for (std::size_t b = 0; b < w.bodies.size(); ++b) {
-    const Body& body = w.bodies[b];
-    if (body.kind != BodyKind::deformable) continue;
-    const fem::TetElements& e = w.elements[body.elements];
-    const std::vector<fem::ElementExtraStiffness> springs = face_springs(w, static_cast<int>(b));
-    const double omega_e = fem::element_critical_step(e).omega_max;
-    const LocalLimit l = local_limit(w, body, k_row, omega_e, factor);
-    auto set_added = [&](double gamma) {
-      for (int i = body.node_begin; i < body.node_end; ++i) {
-        added[i] = std::max(0.0, k_row[i] / (gamma * l.omega_e2) - w.mass[i]);
-      }
-    };
-    auto excess = [&](double gamma) {
-      set_added(gamma);
-      double gershgorin = 0;
-      for (int i = body.node_begin; i < body.node_end; ++i) {
-        if (w.mass[i] > 0) gershgorin = std::max(gershgorin, k_row[i] / (w.mass[i] + added[i]));
-      }
-      const fem::ElementStep both = fem::element_critical_step(e, springs, added);
-      const double omega2 = std::min(l.omega_e2 + gershgorin, both.omega_max * both.omega_max);
-      return std::sqrt(omega2 / l.omega_e2) - factor;
-    };
-    const double g_hi = excess(l.gamma_hi);
-    if (g_hi <= 0 || !(l.gamma_hi > l.gamma_lo)) {
-      set_added(std::max(l.gamma_hi, l.gamma_lo));
-      continue;
-    }
-    const double g_lo = excess(l.gamma_lo);
-    set_added(largest_meeting(excess, l.gamma_lo, l.gamma_hi, std::min(g_lo, 0.0), g_hi,
-                              kMeetTolerance * factor));
-    double dm = 0;
-    for (int i = body.node_begin; i < body.node_end; ++i) dm += added[i];
-    largest = std::max(largest, dm / body.mass);
-  }
-  if (largest == 0) return 0;
-  w.added_mass = added;
-  for (std::size_t i = 0; i < n; ++i) {
-    if (added[i] > 0) {
-      w.mass[i] += added[i];
-      w.inv_mass[i] = 1.0 / w.mass[i];
-    }
-  }
-  return largest;
-}
 
 CriticalStep critical_step(const World& w) {
   if (w.law != ContactLaw::potential) return volume_critical_step(w);

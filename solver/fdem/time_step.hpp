@@ -17,10 +17,10 @@ struct CriticalStep {
 };
 
 // Contact model. Every surface face of a moving body, pressed into another body, adds a
-// stiffness k_f = p A (1/h + 1/h') (fdem_world.cpp) spread over its three nodes by the consistent
-// face matrix K_f = k_f/12 [[2,1,1],[1,2,1],[1,1,2]] ⊗ I (≥ the normal-only spring), taken as a
-// spring to the ground (the partner's compliance is in 1/h'), so the bodies decouple and the
-// world's largest ω is the largest over its bodies.
+// stiffness k_f = p A (1/h + 1/h') (build_world.cpp, set_face_stiffness) spread over its three
+// nodes by the consistent face matrix K_f = k_f/12 [[2,1,1],[1,2,1],[1,1,2]] ⊗ I (≥ the normal-only
+// spring), taken as a spring to the ground (the partner's compliance is in 1/h'), so the bodies
+// decouple and the world's largest ω is the largest over its bodies.
 //
 // Deformable body: every surface face is assumed pressed at once (the step is fixed for the
 // run). Its K_f joins the stiffness of the element that owns the face, and the element bound
@@ -43,50 +43,6 @@ struct CriticalStep {
 // 2000, §6.3). In the fallback P_f is the whole face, where the integral is the consistent face
 // matrix above.
 CriticalStep critical_step(const World& world);
-
-// Lowers the penalty of a potential-law world, where needed, so that the penalty contact pulls no
-// deformable body's predicted step (critical_step) more than `factor` below its elements' own
-// limit: returns the scale s ≤ 1 applied to World::penalty and World::face_stiffness (1: nothing
-// changed; World::penalty_asked keeps the penalty asked for).
-//
-// Why (issue 11, item 5): at α = 10 the penalty layer's stiffness per area, p/h with h a quarter
-// of the surface tetrahedron's height, is 40 E/H, about 40× its element's own, so the contact
-// alone set the step 1.1–4.3× below the element limit on the study's meshes (reports/fem/
-// mesh_step.md; a global Lanczos estimate of the same all-faces system agrees within 10 %, so
-// the bound is not what is loose). The step then follows the penalty, not the element size.
-// Lowering p to the factor costs penetration compliance: E/p of the elements' own shortening
-// (Munjiza 2004, eqs 2.56–2.57), measured in reports/fem/mesh_step.md on the FEM/DEM gates.
-//
-// How: ω² of elements plus face springs grows with s (the springs are linear in p), the element
-// part does not; regula falsi (Illinois) on ω(s)/ω_element − factor (undamped, so a body's
-// damping_ratio leaves its penalty alone) from s = 0 (ratio 1) and s = 1 keeps the last s that
-// meets the factor, at most six evaluations of the bound, stopping once the factor met is within
-// 2 % of the one asked (so in [0.98, 1] × factor unless the six run out first: 4 of the 161
-// lowered meshes of the bench_fem set stopped at 0.962–0.980, reports/fem/collision_cost.md).
-// Rigid bodies have no element limit and are left alone.
-double limit_penalty(World& world, double factor);
-
-// The same bound met locally (ContactStepFix::face_penalty): the penalty is lowered only on the
-// surface faces whose nodes set the step, each node i by s_i = min(1, γ ω_e² m_i / c_i) (c_i =
-// Σ k_f/3 over its faces, the Gershgorin row of its face springs; ω_e the body's element bound),
-// a face by the least s of its nodes and a contact tetrahedron by the least s of its surface nodes
-// (World::tet_penalty_scale; a pair takes the smaller of its two). γ = factor² − 1 meets the
-// factor by Weyl's sum alone (ω² ≤ ω_e² + max_i s_i c_i / m_i ≤ factor² ω_e²); regula falsi on
-// the combined bound then raises γ towards the factor, at most six evaluations, stopping within
-// 2 % of it as limit_penalty does. The penalty of a face is so scaled with the stiffness and mass
-// of the element under it: large elements keep α as asked, the small or thin ones that set the
-// step get less. Returns the least face scale.
-double limit_face_penalty(World& world, double factor);
-
-// The same bound met by contact (nodal) mass scaling (ContactStepFix::mass): each surface node
-// i whose face springs set the step gets the lumped mass c_i / (γ ω_e²) instead of m_i where that
-// is more (World::added_mass, also in World::mass), γ found as in limit_face_penalty; the penalty
-// stays as asked. Forces are unchanged, so linear momentum Σ m v (with the added mass) is
-// conserved exactly as before, but the body starts with (m + Δm) v and ½ (m + Δm) v²: the impact
-// is that of a heavier body by Δm/m (a Hertz peak ∝ m^{3/5}, duration ∝ m^{2/5}), with the added
-// mass on the surface where it also slows the local response. Returns the largest Δm/m over
-// the bodies (0: nothing added).
-double scale_contact_mass(World& world, double factor);
 
 // The surface faces (indices into World::face_nodes) of rigid body `rigid` (index into
 // World::rigid) that can be pressed in this scene, with the largest penetration δ_max (m) along

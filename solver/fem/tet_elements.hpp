@@ -95,7 +95,7 @@ struct ElementExtraStiffness {
   Eigen::Matrix<double, 12, 12> k;  // on the element's four nodes, 3 DOF each, symmetric ≥ 0
 };
 // `added_mass` (kg, indexed by the global node numbers of e.tets; empty: none) is lumped mass
-// beyond ρV/4 on some nodes (contact mass scaling, fdem/time_step.hpp): it joins those nodes'
+// beyond ρV/4 on some nodes (contact mass scaling, fdem/contact_step.hpp): it joins those nodes'
 // mass before the split, so the bound is that of the scaled mass matrix.
 ElementStep element_critical_step(const TetElements& e,
                                   const std::vector<ElementExtraStiffness>& extra = {},

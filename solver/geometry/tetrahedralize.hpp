@@ -82,7 +82,7 @@ long default_steiner_budget(const SurfaceMesh& surface, const ElementSize& size)
 
 // Height of the tetrahedron on each surface face above that face, 3V/A, and its longest edge:
 // Munjiza's potential rises from the face over a quarter of that height, so the face's penalty
-// stiffness grows as 1/height (fdem_world.cpp) and the contact step shrinks as √height.
+// stiffness grows as 1/height (fdem/build_world.cpp) and the contact step shrinks as √height.
 struct SurfaceTetHeight {
   int tet = -1;
   double height = 0;        // m

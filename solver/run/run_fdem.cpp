@@ -169,10 +169,10 @@ Built build(const scene::SceneDef& s) {
   // for a pair).
   out.def.contact.friction = s.contact.friction.value_or(friction);
   // The volume laws' friction is a tangential spring with a Coulomb cap. volume-hertz takes
-  // Mindlin's k_t = 8 G* a from the overlap's cross-section (fdem_world.cpp, volume_friction);
-  // volume-linear's kt, as in YADE's volumetric law, has no default (its normal stiffness k_v |S|
-  // varies with the overlap, so no one ratio to it is the right one): friction without it is
-  // refused.
+  // Mindlin's k_t = 8 G* a from the overlap's cross-section (fdem/volume_contact.cpp,
+  // volume_friction); volume-linear's kt, as in YADE's volumetric law, has no default (its normal
+  // stiffness k_v |S| varies with the overlap, so no one ratio to it is the right one): friction
+  // without it is refused.
   if (s.contact.law == scene::ContactLaw::volume_linear && out.def.contact.friction > 0) {
     if (!s.contact.kt) {
       throw InputError(where + "contact.kt: the volume laws' friction (" +

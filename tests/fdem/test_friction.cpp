@@ -1,5 +1,6 @@
-// Coulomb friction at the potential contact (fdem_world.cpp, contact_forces): a box sliding on a
-// fixed block against the rigid-body solutions of Coulomb's law.
+// Coulomb friction at the potential contact (contact/potential_friction.hpp,
+// fdem/potential_contact.cpp): a box sliding on a fixed block against the rigid-body solutions of
+// Coulomb's law.
 #include <cmath>
 #include <numbers>
 

@@ -125,10 +125,10 @@ TEST(CriticalStep, RigidFallsBackToEveryFace) {
   EXPECT_EQ(static_cast<int>(b.faces.size()), all);
 }
 
-// The three ways to meet max_contact_factor (fdem/time_step.hpp: limit_penalty,
+// The three ways to meet max_contact_factor (fdem/contact_step.hpp: limit_penalty,
 // limit_face_penalty, scale_contact_mass) on the coarse ball, whose contact alone pulls its step
 // well below the element limit. For each: the factor is met (to the regula falsi's round-off),
-// and the search stopped within its stated 2 % of it (time_step.cpp, kMeetTolerance; the search
+// and the search stopped within its stated 2 % of it (contact_step.cpp, kMeetTolerance; the search
 // keeps only γ that meet the factor, so the met factor lies in [0.98, 1] × factor unless its six
 // steps run out first, which they do not here),
 // and the predicted step is still rigorous for the model it bounds: ≤ 2/ω_exact of the elements

@@ -1,8 +1,9 @@
-// Friction under volume-hertz (fdem_world.cpp, volume_friction): a faceted rigid sphere striking a
-// plane obliquely with Coulomb friction against the smooth rigid sphere under Hertz–Mindlin
-// (dem/sphere_world.cpp, contact/hertz_mindlin.hpp), the law volume-hertz reduces to on a sphere:
-// Hertz's normal force and Mindlin's k_t = 8 G* a. Elastic in both (no damping), so the rebound's
-// tangential velocity and spin are set by the stick and slip of the tangential spring alone.
+// Friction under volume-hertz (fdem/volume_contact.cpp, volume_friction): a faceted rigid sphere
+// striking a plane obliquely with Coulomb friction against the smooth rigid sphere under
+// Hertz–Mindlin (dem/sphere_world.cpp, contact/hertz_mindlin.hpp), the law volume-hertz reduces to
+// on a sphere: Hertz's normal force and Mindlin's k_t = 8 G* a. Elastic in both (no damping), so
+// the rebound's tangential velocity and spin are set by the stick and slip of the tangential spring
+// alone.
 #include <gtest/gtest.h>
 
 #include <algorithm>

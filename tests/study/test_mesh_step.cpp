@@ -42,8 +42,8 @@ TEST(MeshStep, ContactCostsAtMostTwiceTheElementStep) {
       ASSERT_EQ(m.error, "");
       EXPECT_LE(m.face_factor(), 2.0 + 1e-9);
       if (m.face_scale_min < 1) {
-        // The search stops within 2 % of the factor (fdem/time_step.cpp, kMeetTolerance) on these
-        // nine meshes; it may run out of its six steps first (1.92–1.96 on 4 of 161 lowered
+        // The search stops within 2 % of the factor (fdem/contact_step.cpp, kMeetTolerance) on
+        // these nine meshes; it may run out of its six steps first (1.92–1.96 on 4 of 161 lowered
         // meshes of the bench_fem set, reports/fem/collision_cost.md).
         EXPECT_GE(m.face_factor(), 2.0 * 0.98 - 1e-9);
       }
