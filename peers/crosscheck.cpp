@@ -173,16 +173,18 @@ int cost_only(const CrosscheckOptions& o, const scene::SceneDef& s, const run::R
   return failed.empty() ? kExitOk : kExitFailure;
 }
 
-}  // namespace
+using Reasons = std::vector<std::pair<std::string, std::string>>;  // peer, why
+using Summaries = std::vector<std::pair<std::string, Json>>;       // peer, its summary.json
 
-int crosscheck(const CrosscheckOptions& o) {
-  const scene::SceneDef s = load_scene_or_case(o.scene_file);
-  // Every peer is found and asked first: bad input is reported before anything runs or is written.
+// Every peer found and asked whether it can express the scene, before anything runs or is
+// written: bad input is reported first. A peer that cannot express it is an error, or with
+// --only-expressible a reason in `not_run`.
+std::vector<Planned> plan_peers(const CrosscheckOptions& o, const scene::SceneDef& s,
+                                Reasons& not_run) {
   if (o.peers.empty()) throw InputError("crosscheck: --peer: name at least one peer");
   if (o.cost_only && (o.max_rel_diff || o.junit))
     throw InputError("crosscheck: --cost-only compares nothing: drop --max-rel-diff and --junit");
   std::vector<Planned> plan;
-  std::vector<std::pair<std::string, std::string>> not_run;  // peer, why it cannot express s
   for (const std::string& name : o.peers) {
     const Adapter& a = find_adapter(name);
     for (const Planned& p : plan)
@@ -197,36 +199,15 @@ int crosscheck(const CrosscheckOptions& o) {
     const auto it = o.programs.find(name);
     plan.push_back({&a, peer_executable(a, it == o.programs.end() ? "" : it->second)});
   }
+  return plan;
+}
 
-  fs::create_directories(o.out);
-  io::remove_earlier_output(o.out / "comparison.json");
-  io::remove_earlier_output(o.out / "cost.json");
-  if (o.junit) io::remove_earlier_output(*o.junit);
-  const double cpu0 = cpu_seconds();
-  const auto wall0 = std::chrono::steady_clock::now();
-  const run::RunResult a = run::run_scene(s, {.keep_rows = true});
-  run::write_outputs(a, o.out / "asperity");
-  const double run_cpu = cpu_seconds() - cpu0, run_wall = seconds_since(wall0);
-  if (a.status == "unstable") {
-    std::cerr << "asperity: crosscheck: asperity's run went unstable (" << a.message
-              << "); no peer run\n";
-    return kExitUnstable;
-  }
-  const Resolved resolved{.dt = a.summary.at("dt").get<double>(),
-                          .steps = a.summary.at("steps").get<long>()};
-  if (o.cost_only) return cost_only(o, s, a, run_cpu, run_wall, resolved, plan);
-
-  std::vector<std::pair<std::string, Json>> done;  // peer -> summary
-  std::vector<std::pair<std::string, std::string>> failed;
-  for (const Planned& p : plan) {
-    try {
-      done.emplace_back(p.adapter->name,
-                        run_peer(*p.adapter, p.exe, s, resolved, o.out / p.adapter->name).summary);
-    } catch (const PeerFailure& e) {
-      failed.emplace_back(p.adapter->name, e.what());
-    }
-  }
-
+// comparison.json: the identity of the run, each code's status, the gated and the other
+// quantities side by side with their relative differences, CPU and, where a peer times its kinds
+// of step, the cost per step.
+Json comparison(const CrosscheckOptions& o, const scene::SceneDef& s, const run::RunResult& a,
+                const Resolved& resolved, const std::vector<Planned>& plan, const Reasons& not_run,
+                const Summaries& done, const Reasons& failed) {
   Json c;
   c["scene"] = s.name;
   c["file"] = o.scene_file.string();
@@ -283,9 +264,15 @@ int crosscheck(const CrosscheckOptions& o) {
     c["step_seconds"] = {{"asperity", mine}};
     for (const auto& [name, v] : steps_cost.items()) c["step_seconds"][name] = v;
   }
+  return c;
+}
 
-  // The gate: per peer, the three contract quantities within max_rel_diff and the same status.
-  std::vector<validation::JUnitCase> junit;
+// The gate: per peer, the three contract quantities within max_rel_diff and the same status.
+// Fills `junit` (one case per peer and gated quantity, a skipped or failed run one case each);
+// whether every peer passed.
+bool gate(const CrosscheckOptions& o, const scene::SceneDef& s, const run::RunResult& a, Json& c,
+          const Reasons& not_run, const Summaries& done, const Reasons& failed,
+          std::vector<validation::JUnitCase>& junit) {
   bool passed = failed.empty();
   for (const auto& [name, why] : not_run) {
     junit.push_back({.classname = s.name + "." + name,
@@ -325,13 +312,13 @@ int crosscheck(const CrosscheckOptions& o) {
                       "tolerance"});
     }
   }
-  if (o.max_rel_diff) {
-    c["max_rel_diff"] = *o.max_rel_diff;
-    c["passed"] = passed;
-  }
-  write_file(o.out / "comparison.json", c.dump(2) + "\n");
-  if (o.junit) validation::write_junit(*o.junit, "asperity crosscheck " + s.name, junit);
+  return passed;
+}
 
+// The failures, and unless quiet each peer's differences and CPU, on stderr.
+void report(const CrosscheckOptions& o, const scene::SceneDef& s, const run::RunResult& a, Json& c,
+            const Summaries& done, const Reasons& failed) {
+  const double cpu_a = a.summary.at("cpu_seconds").get<double>();
   for (const auto& [name, why] : failed) std::cerr << "asperity: crosscheck: " << why << "\n";
   if (!o.quiet) {
     for (const auto& [name, summary] : done) {
@@ -344,6 +331,55 @@ int crosscheck(const CrosscheckOptions& o) {
     }
     if (failed.empty()) std::cerr << "-> " << o.out.string() << "\n";
   }
+}
+
+}  // namespace
+
+int crosscheck(const CrosscheckOptions& o) {
+  const scene::SceneDef s = load_scene_or_case(o.scene_file);
+  Reasons not_run;  // peer, why it cannot express s
+  const std::vector<Planned> plan = plan_peers(o, s, not_run);
+
+  fs::create_directories(o.out);
+  io::remove_earlier_output(o.out / "comparison.json");
+  io::remove_earlier_output(o.out / "cost.json");
+  if (o.junit) io::remove_earlier_output(*o.junit);
+  const double cpu0 = cpu_seconds();
+  const auto wall0 = std::chrono::steady_clock::now();
+  const run::RunResult a = run::run_scene(s, {.keep_rows = true});
+  run::write_outputs(a, o.out / "asperity");
+  const double run_cpu = cpu_seconds() - cpu0, run_wall = seconds_since(wall0);
+  if (a.status == "unstable") {
+    std::cerr << "asperity: crosscheck: asperity's run went unstable (" << a.message
+              << "); no peer run\n";
+    return kExitUnstable;
+  }
+  const Resolved resolved{.dt = a.summary.at("dt").get<double>(),
+                          .steps = a.summary.at("steps").get<long>()};
+  if (o.cost_only) return cost_only(o, s, a, run_cpu, run_wall, resolved, plan);
+
+  Summaries done;
+  Reasons failed;
+  for (const Planned& p : plan) {
+    try {
+      done.emplace_back(p.adapter->name,
+                        run_peer(*p.adapter, p.exe, s, resolved, o.out / p.adapter->name).summary);
+    } catch (const PeerFailure& e) {
+      failed.emplace_back(p.adapter->name, e.what());
+    }
+  }
+
+  Json c = comparison(o, s, a, resolved, plan, not_run, done, failed);
+  std::vector<validation::JUnitCase> junit;
+  const bool passed = gate(o, s, a, c, not_run, done, failed, junit);
+  if (o.max_rel_diff) {
+    c["max_rel_diff"] = *o.max_rel_diff;
+    c["passed"] = passed;
+  }
+  write_file(o.out / "comparison.json", c.dump(2) + "\n");
+  if (o.junit) validation::write_junit(*o.junit, "asperity crosscheck " + s.name, junit);
+
+  report(o, s, a, c, done, failed);
   if (!failed.empty()) return kExitFailure;
   return passed || !o.max_rel_diff ? kExitOk : kExitFailure;
 }

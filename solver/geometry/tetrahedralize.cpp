@@ -243,12 +243,10 @@ long default_steiner_budget(const SurfaceMesh& surface, const ElementSize& size)
                                 static_cast<long>(std::min(4 * tets, 1e12)));
 }
 
-TetMesh tetrahedralize(const SurfaceMesh& input, const TetOptions& options_in) {
-  TetOptions options = options_in;
-  if (options.max_steiner_points < 0)
-    options.max_steiner_points = default_steiner_budget(input, options.element_size);
-  const SurfaceMesh surface =
-      options.element_size.set() ? subdivide_surface(input, options.element_size) : input;
+namespace {
+
+// The tetrahedralization without lifts, refused in the terms it was asked in.
+TetMesh first_tetrahedralization(const SurfaceMesh& surface, const TetOptions& options) {
   // The first run decides whether the mesh can be made at all: a time or Steiner-point budget
   // overrun is the caller's request that cannot be met (InputError), a TetGen failure is
   // std::runtime_error.
@@ -278,258 +276,286 @@ TetMesh tetrahedralize(const SurfaceMesh& input, const TetOptions& options_in) {
                      std::to_string(options.max_steiner_points) +
                      " interior points on this surface; " + looser);
   }
-  if (options.min_surface_height_ratio <= 0) return tm;
-  const Eigen::Index nf = surface.faces.cols();
-  const auto corner = [&](Eigen::Index f, int k) {
+  return tm;
+}
+
+// Height of apex p[3] below the face p[0], p[1], p[2] (positive: inward), over the longest edge.
+double height_ratio(const std::array<Vec3, 4>& p) {
+  double longest = 0;
+  for (int i = 0; i < 4; ++i)
+    for (int j = i + 1; j < 4; ++j) longest = std::max(longest, (p[i] - p[j]).norm());
+  const Vec3 normal = (p[1] - p[0]).cross(p[2] - p[0]);
+  return -(p[3] - p[0]).dot(normal) / normal.norm() / longest;  // apex below: inward
+}
+
+// Least height (3V over the largest face area) over the longest edge.
+double least_height_ratio(const std::array<Vec3, 4>& p) {
+  double longest = 0, largest_area2 = 0;
+  for (int i = 0; i < 4; ++i) {
+    for (int j = i + 1; j < 4; ++j) longest = std::max(longest, (p[i] - p[j]).norm());
+    const Vec3 &a = p[(i + 1) % 4], &b = p[(i + 2) % 4], &c = p[(i + 3) % 4];
+    largest_area2 = std::max(largest_area2, (b - a).cross(c - a).norm());
+  }
+  return std::abs((p[1] - p[0]).cross(p[2] - p[0]).dot(p[3] - p[0])) / largest_area2 / longest;
+}
+
+// Volume over the cube of the longest edge.
+double volume_ratio(const Vec3& a, const Vec3& b, const Vec3& c, const Vec3& d) {
+  double longest = 0;
+  const std::array<Vec3, 4> p{a, b, c, d};
+  for (int i = 0; i < 4; ++i)
+    for (int j = i + 1; j < 4; ++j) longest = std::max(longest, (p[i] - p[j]).norm());
+  return std::abs((b - a).cross(c - a).dot(d - a)) / 6.0 / std::pow(longest, 3);
+}
+
+struct Lifted {
+  TetMesh mesh;
+  double gain = 1;
+  double element_frequency = 0;
+  double contact_frequency2 = 0;
+};
+
+// The lifting of flat surface tetrahedra (TetOptions::min_surface_height_ratio), state and phases:
+// rounds in which TetGen fills the space again after the faces still below the bound got an
+// interior apex (lift_flat_faces) and the apexes that left thin tetrahedra went
+// (drop_thin_apexes). The cost repair runs the rounds again under other options.
+struct Lifting {
+  Lifting(const SurfaceMesh& surface_in, const TetMesh& first, const TetOptions& options_in);
+
+  Vec3 corner(Eigen::Index f, int k) const {
     return Vec3(surface.vertices.col(surface.faces(k, f)));
-  };
-  std::vector<std::vector<int>> vertex_faces(static_cast<std::size_t>(surface.vertices.cols()));
-  for (Eigen::Index f = 0; f < nf; ++f)
-    for (int k = 0; k < 3; ++k) vertex_faces[surface.faces(k, f)].push_back(static_cast<int>(f));
-  const auto height_ratio = [](const std::array<Vec3, 4>& p) {
-    double longest = 0;
-    for (int i = 0; i < 4; ++i)
-      for (int j = i + 1; j < 4; ++j) longest = std::max(longest, (p[i] - p[j]).norm());
-    const Vec3 normal = (p[1] - p[0]).cross(p[2] - p[0]);
-    return -(p[3] - p[0]).dot(normal) / normal.norm() / longest;  // apex below: inward
-  };
-  // Least height (3V over the largest face area) over the longest edge.
-  const auto least_height_ratio = [](const std::array<Vec3, 4>& p) {
-    double longest = 0, largest_area2 = 0;
-    for (int i = 0; i < 4; ++i) {
-      for (int j = i + 1; j < 4; ++j) longest = std::max(longest, (p[i] - p[j]).norm());
-      const Vec3 &a = p[(i + 1) % 4], &b = p[(i + 2) % 4], &c = p[(i + 3) % 4];
-      largest_area2 = std::max(largest_area2, (b - a).cross(c - a).norm());
-    }
-    return std::abs((p[1] - p[0]).cross(p[2] - p[0]).dot(p[3] - p[0])) / largest_area2 / longest;
-  };
-  const auto volume_ratio = [](const Vec3& a, const Vec3& b, const Vec3& c, const Vec3& d) {
-    double longest = 0;
-    const std::array<Vec3, 4> p{a, b, c, d};
-    for (int i = 0; i < 4; ++i)
-      for (int j = i + 1; j < 4; ++j) longest = std::max(longest, (p[i] - p[j]).norm());
-    return std::abs((b - a).cross(c - a).dot(d - a)) / 6.0 / std::pow(longest, 3);
-  };
-  Lifts lifts;
-  std::vector<std::array<Vec3, 4>> lifted_tets;
-  std::vector<int> apex_of_face(static_cast<std::size_t>(nf), -1);
-  std::vector<Vec3> banned;  // apex positions that made a thin tetrahedron
-  bool share_apexes = true;  // a face may take a lifted neighbour's apex
+  }
   // Lifts face f if some apex passes: the imposed tetrahedron is high enough, overlaps neither
   // the surface nor another imposed tetrahedron (touching is allowed), keeps its apex clear of
   // the rest of the surface, and leaves no flat tetrahedron between its wall and a neighbour's.
-  const auto lift_face = [&](Eigen::Index f, const SurfaceTetHeight& hf) {
-    const Vec3 a = corner(f, 0), b = corner(f, 1), c = corner(f, 2);
-    const Vec3 n = (b - a).cross(c - a).normalized();
-    const double edge = std::max({(b - a).norm(), (c - b).norm(), (a - c).norm()});
-    const double tol = 1e-9 * edge;
-    // Candidates: the apexes of lifted faces around this one (a shared apex leaves no thin
-    // wedge between two apexes), then new points below the centroid.
-    std::vector<std::pair<int, Vec3>> candidates;
-    for (int k = 0; k < 3 && share_apexes; ++k)
-      for (const int g : vertex_faces[surface.faces(k, f)])
-        if (apex_of_face[g] >= 0)
-          candidates.push_back({apex_of_face[g], lifts.apexes[apex_of_face[g]]});
-    std::sort(candidates.begin(), candidates.end(), [&](const auto& x, const auto& y) {
-      return height_ratio({a, b, c, x.second}) > height_ratio({a, b, c, y.second});
-    });
-    candidates.erase(std::unique(candidates.begin(), candidates.end(),
-                                 [](const auto& x, const auto& y) { return x.first == y.first; }),
-                     candidates.end());
-    for (const double scale : {1.0, 0.7, 0.5})
-      candidates.push_back({-1, (a + b + c) / 3.0 - scale * options.lift_depth * edge * n});
-    // First an apex that clears the bound with a margin; failing that, one that at least
-    // triples the face's height ratio (long thin faces on flat patches cannot reach the bound).
-    const double strict = 1.2 * options.min_surface_height_ratio;
-    for (const double need : {strict, std::min(strict, 3 * hf.height / hf.longest_edge)})
-      for (const auto& [apex_index, apex] : candidates) {
-        if (std::any_of(banned.begin(), banned.end(),
-                        [&](const Vec3& q) { return (q - apex).norm() <= tol; })) {
-          continue;
-        }
-        const std::array<Vec3, 4> tet{a, b, c, apex};
-        const double depth = -(apex - a).dot(n);
-        bool ok = height_ratio(tet) >= need;
-        for (Eigen::Index g = 0; g < nf && ok; ++g) {
-          if (g == f) continue;
-          const std::array<Vec3, 3> tri{corner(g, 0), corner(g, 1), corner(g, 2)};
-          ok = separated<4, 3>(tet, tri, tol) &&
-               point_triangle_distance(apex, tri[0], tri[1], tri[2]) >= 0.5 * depth;
-        }
-        for (std::size_t k = 0; k < lifted_tets.size() && ok; ++k) {
-          if (lifts.apex_of[k] == apex_index) continue;
-          ok = separated<4, 4>(tet, lifted_tets[k], tol) &&
-               (lifts.apexes[lifts.apex_of[k]] - apex).norm() >= options.lift_spacing * edge;
-          // A lifted face across an edge of this one: the tetrahedron (edge, both apexes)
-          // between the two walls must not be flat.
-          const auto other = surface.faces.col(lifts.faces[k]);
-          for (int e = 0; e < 3 && ok; ++e) {
-            const int u = surface.faces(e, f), v = surface.faces((e + 1) % 3, f);
-            if ((other.array() == u).any() && (other.array() == v).any()) {
-              ok = volume_ratio(surface.vertices.col(u), surface.vertices.col(v), apex,
-                                lifts.apexes[lifts.apex_of[k]]) >= options.min_wedge_volume_ratio;
-            }
-          }
-        }
-        if (ok) {
-          int k = apex_index;
-          if (k < 0) {
-            k = static_cast<int>(lifts.apexes.size());
-            lifts.apexes.push_back(apex);
-          }
-          lifts.faces.push_back(static_cast<int>(f));
-          lifts.apex_of.push_back(k);
-          lifted_tets.push_back(tet);
-          apex_of_face[f] = k;
-          return true;
-        }
-      }
-    return false;
-  };
-  const int nv = static_cast<int>(surface.vertices.cols());
-  const std::vector<SurfaceTetHeight> h0 = surface_tet_heights(tm);
+  bool lift_face(Eigen::Index f, const SurfaceTetHeight& hf);
+  // Takes out the apexes blamed in the last round and those of thin tetrahedra; whether any went.
+  bool drop_thin_apexes(std::vector<bool>& blamed);
+  // Lifts the faces still below the bound (or blames the apexes around one that cannot be
+  // lifted and got worse); whether any was lifted.
+  bool lift_flat_faces(int round, std::vector<bool>& blamed);
   // The mesh of the round with the largest predicted step, as a ratio to the mesh without lifts:
   // the smaller of the element and contact step ratios (each a lower bound of the combined one),
   // the element one from the mass-split bound itself (StepScales).
-  const StepScales s0 = step_scales(tm);
-  const TetMesh plain = tm;
-  struct Lifted {
-    TetMesh mesh;
-    double gain = 1;
-    double element_frequency = 0;
-    double contact_frequency2 = 0;
-  };
-  const auto lift_rounds = [&] {
-    Lifted best{.mesh = plain,
-                .element_frequency = s0.element_frequency,
-                .contact_frequency2 = s0.contact_frequency2};
-    tm = plain;
-    lifts = {};
-    lifted_tets.clear();
-    std::fill(apex_of_face.begin(), apex_of_face.end(), -1);
-    banned.clear();
-    std::vector<bool> blamed;  // apexes of lifts that left an unliftable neighbour worse off
-    // Rounds of lifting, then rounds that only take thin-making apexes out (each takes one or
-    // more out, so they end, at the latest with the mesh of no lifts).
-    for (int round = 0;; ++round) {
-      // TetGen fills the space between walls and surface as it can; where that leaves a thin
-      // tetrahedron at an apex (its element step falls with its least height), the newest apex
-      // of that tetrahedron goes, and its position is not tried again.
-      std::vector<bool> drop(lifts.apexes.size(), false);
-      bool dropped = false;
-      for (std::size_t k = 0; k < blamed.size(); ++k) {
-        if (blamed[k]) drop[k] = dropped = true;
+  Lifted rounds();
+
+  const SurfaceMesh& surface;
+  TetOptions options;  // as asked, or the cost repair's variant
+  Eigen::Index nf = 0;
+  int nv = 0;
+  std::vector<std::vector<int>> vertex_faces;
+  std::vector<SurfaceTetHeight> h0;
+  StepScales s0;
+  TetMesh plain;
+  TetMesh tm;
+  Lifts lifts;
+  std::vector<std::array<Vec3, 4>> lifted_tets;
+  std::vector<int> apex_of_face;
+  std::vector<Vec3> banned;  // apex positions that made a thin tetrahedron
+  bool share_apexes = true;  // a face may take a lifted neighbour's apex
+};
+
+Lifting::Lifting(const SurfaceMesh& surface_in, const TetMesh& first, const TetOptions& options_in)
+    : surface(surface_in), options(options_in), nf(surface_in.faces.cols()) {
+  tm = first;
+  vertex_faces.resize(static_cast<std::size_t>(surface.vertices.cols()));
+  for (Eigen::Index f = 0; f < nf; ++f)
+    for (int k = 0; k < 3; ++k) vertex_faces[surface.faces(k, f)].push_back(static_cast<int>(f));
+  apex_of_face.assign(static_cast<std::size_t>(nf), -1);
+  nv = static_cast<int>(surface.vertices.cols());
+  h0 = surface_tet_heights(tm);
+  s0 = step_scales(tm);
+  plain = tm;
+}
+
+bool Lifting::lift_face(Eigen::Index f, const SurfaceTetHeight& hf) {
+  const Vec3 a = corner(f, 0), b = corner(f, 1), c = corner(f, 2);
+  const Vec3 n = (b - a).cross(c - a).normalized();
+  const double edge = std::max({(b - a).norm(), (c - b).norm(), (a - c).norm()});
+  const double tol = 1e-9 * edge;
+  // Candidates: the apexes of lifted faces around this one (a shared apex leaves no thin
+  // wedge between two apexes), then new points below the centroid.
+  std::vector<std::pair<int, Vec3>> candidates;
+  for (int k = 0; k < 3 && share_apexes; ++k)
+    for (const int g : vertex_faces[surface.faces(k, f)])
+      if (apex_of_face[g] >= 0)
+        candidates.push_back({apex_of_face[g], lifts.apexes[apex_of_face[g]]});
+  std::sort(candidates.begin(), candidates.end(), [&](const auto& x, const auto& y) {
+    return height_ratio({a, b, c, x.second}) > height_ratio({a, b, c, y.second});
+  });
+  candidates.erase(std::unique(candidates.begin(), candidates.end(),
+                               [](const auto& x, const auto& y) { return x.first == y.first; }),
+                   candidates.end());
+  for (const double scale : {1.0, 0.7, 0.5})
+    candidates.push_back({-1, (a + b + c) / 3.0 - scale * options.lift_depth * edge * n});
+  // First an apex that clears the bound with a margin; failing that, one that at least
+  // triples the face's height ratio (long thin faces on flat patches cannot reach the bound).
+  const double strict = 1.2 * options.min_surface_height_ratio;
+  for (const double need : {strict, std::min(strict, 3 * hf.height / hf.longest_edge)})
+    for (const auto& [apex_index, apex] : candidates) {
+      if (std::any_of(banned.begin(), banned.end(),
+                      [&](const Vec3& q) { return (q - apex).norm() <= tol; })) {
+        continue;
       }
-      blamed.assign(lifts.apexes.size(), false);
-      for (Eigen::Index t = 0; t < tm.tets.cols(); ++t) {
-        int newest = -1;
-        std::array<Vec3, 4> p;
-        for (int k = 0; k < 4; ++k) {
-          const int node = tm.tets(k, t);
-          p[k] = tm.nodes.col(node);
-          if (node >= nv && node < nv + static_cast<int>(lifts.apexes.size()))
-            newest = std::max(newest, node - nv);
-        }
-        if (newest >= 0 && least_height_ratio(p) < options.min_apex_tet_height_ratio) {
-          dropped = dropped || !drop[newest];
-          drop[newest] = true;
-        }
+      const std::array<Vec3, 4> tet{a, b, c, apex};
+      const double depth = -(apex - a).dot(n);
+      bool ok = height_ratio(tet) >= need;
+      for (Eigen::Index g = 0; g < nf && ok; ++g) {
+        if (g == f) continue;
+        const std::array<Vec3, 3> tri{corner(g, 0), corner(g, 1), corner(g, 2)};
+        ok = separated<4, 3>(tet, tri, tol) &&
+             point_triangle_distance(apex, tri[0], tri[1], tri[2]) >= 0.5 * depth;
       }
-      if (dropped) {
-        Lifts kept;
-        std::vector<std::array<Vec3, 4>> kept_tets;
-        std::vector<int> index(lifts.apexes.size(), -1);
-        for (std::size_t k = 0; k < lifts.apexes.size(); ++k) {
-          if (drop[k]) {
-            banned.push_back(lifts.apexes[k]);
-          } else {
-            index[k] = static_cast<int>(kept.apexes.size());
-            kept.apexes.push_back(lifts.apexes[k]);
-          }
-        }
-        std::fill(apex_of_face.begin(), apex_of_face.end(), -1);
-        for (std::size_t k = 0; k < lifts.faces.size(); ++k) {
-          if (drop[lifts.apex_of[k]]) continue;
-          kept.faces.push_back(lifts.faces[k]);
-          kept.apex_of.push_back(index[lifts.apex_of[k]]);
-          kept_tets.push_back(lifted_tets[k]);
-          apex_of_face[lifts.faces[k]] = index[lifts.apex_of[k]];
-        }
-        lifts = std::move(kept);
-        lifted_tets = std::move(kept_tets);
-      }
-      const std::vector<SurfaceTetHeight> h = surface_tet_heights(tm);
-      bool added = false;
-      blamed.resize(lifts.apexes.size(), false);
-      for (Eigen::Index f = 0; f < nf; ++f) {
-        if (apex_of_face[f] >= 0 ||
-            h[f].height >= options.min_surface_height_ratio * h[f].longest_edge) {
-          continue;
-        }
-        if (round < options.max_lift_rounds && lift_face(f, h[f])) {
-          added = true;
-        } else {
-          // Not lifted, far below the bound and worse than without lifts: the walls around it are
-          // the cause, so the apexes of the lifted faces that touch it go.
-          const double now = h[f].height / h[f].longest_edge;
-          if (now < 0.5 * options.min_surface_height_ratio &&
-              now < h0[f].height / h0[f].longest_edge) {
-            for (int k = 0; k < 3; ++k)
-              for (const int g : vertex_faces[surface.faces(k, f)])
-                if (apex_of_face[g] >= 0 && apex_of_face[g] < static_cast<int>(blamed.size()))
-                  blamed[apex_of_face[g]] = true;
+      for (std::size_t k = 0; k < lifted_tets.size() && ok; ++k) {
+        if (lifts.apex_of[k] == apex_index) continue;
+        ok = separated<4, 4>(tet, lifted_tets[k], tol) &&
+             (lifts.apexes[lifts.apex_of[k]] - apex).norm() >= options.lift_spacing * edge;
+        // A lifted face across an edge of this one: the tetrahedron (edge, both apexes)
+        // between the two walls must not be flat.
+        const auto other = surface.faces.col(lifts.faces[k]);
+        for (int e = 0; e < 3 && ok; ++e) {
+          const int u = surface.faces(e, f), v = surface.faces((e + 1) % 3, f);
+          if ((other.array() == u).any() && (other.array() == v).any()) {
+            ok = volume_ratio(surface.vertices.col(u), surface.vertices.col(v), apex,
+                              lifts.apexes[lifts.apex_of[k]]) >= options.min_wedge_volume_ratio;
           }
         }
       }
-      if (!added && !dropped) break;
-      IsolatedResult next =
-          run_tetgen_isolated(job_for(surface, lifts, options), options.time_budget_s);
-      if (!next.mesh) break;  // TetGen failed on these walls: keep the best mesh so far
-      tm = std::move(*next.mesh);
-      const StepScales sc = step_scales(tm);
-      const double gain = std::min(s0.element_frequency / sc.element_frequency,
-                                   std::sqrt(s0.contact_frequency2 / sc.contact_frequency2));
-      if (gain > best.gain)
-        best = {.mesh = tm,
-                .gain = gain,
-                .element_frequency = sc.element_frequency,
-                .contact_frequency2 = sc.contact_frequency2};
+      if (ok) {
+        int k = apex_index;
+        if (k < 0) {
+          k = static_cast<int>(lifts.apexes.size());
+          lifts.apexes.push_back(apex);
+        }
+        lifts.faces.push_back(static_cast<int>(f));
+        lifts.apex_of.push_back(k);
+        lifted_tets.push_back(tet);
+        apex_of_face[f] = k;
+        return true;
+      }
     }
-    return best;
-  };
-  const Lifted shared = lift_rounds();
-  // An element step still below the bound (TetOptions::min_element_step_ratio) is set by the
-  // flat tetrahedra that a shared apex leaves: an apex shared by a fan of faces stands high
-  // over each but far across some (ballast_29 of the study at 2000 faces: an apex shared by 11
-  // faces, the step's tetrahedron on one of them 0.12 high across its longest edge, which no
-  // round reaches since its height over the face passes). The rounds run again with an apex
-  // of its own for every lifted face, and that mesh is kept when its element step is longer.
-  // Only where the surface triangles are the elements' faces (no element size): the bound is
-  // the for those meshes; with an element size the step is the size's, and the study's
-  // refined references (rock_02's at 0.08 and 0.04 R, graded at 0.15: 0.098 and 0.147 of the
-  // bisected surface's h/c) stay as they were made.
-  Lifted chosen = shared;
-  bool own_tried = false;
-  if (options.min_element_step_ratio > 0 && !options.element_size.set() &&
-      element_step_ratio(surface, shared.element_frequency) < options.min_element_step_ratio) {
-    share_apexes = false;
-    Lifted own = lift_rounds();
-    share_apexes = true;
-    own_tried = true;
-    if (own.element_frequency < shared.element_frequency) chosen = std::move(own);
+  return false;
+}
+
+bool Lifting::drop_thin_apexes(std::vector<bool>& blamed) {
+  // TetGen fills the space between walls and surface as it can; where that leaves a thin
+  // tetrahedron at an apex (its element step falls with its least height), the newest apex
+  // of that tetrahedron goes, and its position is not tried again.
+  std::vector<bool> drop(lifts.apexes.size(), false);
+  bool dropped = false;
+  for (std::size_t k = 0; k < blamed.size(); ++k) {
+    if (blamed[k]) drop[k] = dropped = true;
   }
-  // The cost repair (TetOptions::min_mean_edge_step_ratio): the same rounds under other
-  // settings, each one that the measurements on the particle set found to undo a short step on
-  // some surface (reports/fem/collision_cost.md): thinner wedges between lifted neighbours'
-  // walls allowed (rock_24, ballast_13 and rock_06 at 1000 faces: element step 1.9–2.0× longer
-  // for 1–2 % more tetrahedra), apexes closer together (rock_32: 1.22×, 4 % fewer), flatter
-  // tetrahedra at an apex kept (rock_32: 1.16×, 9 % fewer), more rounds (ballast_13: 1.91×), an
-  // apex per lifted face, in that order until a mesh meets the bound. The mesh of least work
-  // (below) is kept.
-  if (options.min_mean_edge_step_ratio <= 0 || options.element_size.set() ||
-      mean_edge_step_ratio(surface, chosen.element_frequency) >= options.min_mean_edge_step_ratio) {
-    return std::move(chosen.mesh);
+  blamed.assign(lifts.apexes.size(), false);
+  for (Eigen::Index t = 0; t < tm.tets.cols(); ++t) {
+    int newest = -1;
+    std::array<Vec3, 4> p;
+    for (int k = 0; k < 4; ++k) {
+      const int node = tm.tets(k, t);
+      p[k] = tm.nodes.col(node);
+      if (node >= nv && node < nv + static_cast<int>(lifts.apexes.size()))
+        newest = std::max(newest, node - nv);
+    }
+    if (newest >= 0 && least_height_ratio(p) < options.min_apex_tet_height_ratio) {
+      dropped = dropped || !drop[newest];
+      drop[newest] = true;
+    }
   }
+  if (dropped) {
+    Lifts kept;
+    std::vector<std::array<Vec3, 4>> kept_tets;
+    std::vector<int> index(lifts.apexes.size(), -1);
+    for (std::size_t k = 0; k < lifts.apexes.size(); ++k) {
+      if (drop[k]) {
+        banned.push_back(lifts.apexes[k]);
+      } else {
+        index[k] = static_cast<int>(kept.apexes.size());
+        kept.apexes.push_back(lifts.apexes[k]);
+      }
+    }
+    std::fill(apex_of_face.begin(), apex_of_face.end(), -1);
+    for (std::size_t k = 0; k < lifts.faces.size(); ++k) {
+      if (drop[lifts.apex_of[k]]) continue;
+      kept.faces.push_back(lifts.faces[k]);
+      kept.apex_of.push_back(index[lifts.apex_of[k]]);
+      kept_tets.push_back(lifted_tets[k]);
+      apex_of_face[lifts.faces[k]] = index[lifts.apex_of[k]];
+    }
+    lifts = std::move(kept);
+    lifted_tets = std::move(kept_tets);
+  }
+  return dropped;
+}
+
+bool Lifting::lift_flat_faces(int round, std::vector<bool>& blamed) {
+  const std::vector<SurfaceTetHeight> h = surface_tet_heights(tm);
+  bool added = false;
+  blamed.resize(lifts.apexes.size(), false);
+  for (Eigen::Index f = 0; f < nf; ++f) {
+    if (apex_of_face[f] >= 0 ||
+        h[f].height >= options.min_surface_height_ratio * h[f].longest_edge) {
+      continue;
+    }
+    if (round < options.max_lift_rounds && lift_face(f, h[f])) {
+      added = true;
+    } else {
+      // Not lifted, far below the bound and worse than without lifts: the walls around it are
+      // the cause, so the apexes of the lifted faces that touch it go.
+      const double now = h[f].height / h[f].longest_edge;
+      if (now < 0.5 * options.min_surface_height_ratio && now < h0[f].height / h0[f].longest_edge) {
+        for (int k = 0; k < 3; ++k)
+          for (const int g : vertex_faces[surface.faces(k, f)])
+            if (apex_of_face[g] >= 0 && apex_of_face[g] < static_cast<int>(blamed.size()))
+              blamed[apex_of_face[g]] = true;
+      }
+    }
+  }
+  return added;
+}
+
+Lifted Lifting::rounds() {
+  Lifted best{.mesh = plain,
+              .element_frequency = s0.element_frequency,
+              .contact_frequency2 = s0.contact_frequency2};
+  tm = plain;
+  lifts = {};
+  lifted_tets.clear();
+  std::fill(apex_of_face.begin(), apex_of_face.end(), -1);
+  banned.clear();
+  std::vector<bool> blamed;  // apexes of lifts that left an unliftable neighbour worse off
+  // Rounds of lifting, then rounds that only take thin-making apexes out (each takes one or
+  // more out, so they end, at the latest with the mesh of no lifts).
+  for (int round = 0;; ++round) {
+    const bool dropped = drop_thin_apexes(blamed);
+    const bool added = lift_flat_faces(round, blamed);
+    if (!added && !dropped) break;
+    IsolatedResult next =
+        run_tetgen_isolated(job_for(surface, lifts, options), options.time_budget_s);
+    if (!next.mesh) break;  // TetGen failed on these walls: keep the best mesh so far
+    tm = std::move(*next.mesh);
+    const StepScales sc = step_scales(tm);
+    const double gain = std::min(s0.element_frequency / sc.element_frequency,
+                                 std::sqrt(s0.contact_frequency2 / sc.contact_frequency2));
+    if (gain > best.gain)
+      best = {.mesh = tm,
+              .gain = gain,
+              .element_frequency = sc.element_frequency,
+              .contact_frequency2 = sc.contact_frequency2};
+  }
+  return best;
+}
+
+// The cost repair (TetOptions::min_mean_edge_step_ratio): the same rounds under other
+// settings, each one that the measurements on the particle set found to undo a short step on
+// some surface (reports/fem/collision_cost.md): thinner wedges between lifted neighbours'
+// walls allowed (rock_24, ballast_13 and rock_06 at 1000 faces: element step 1.9–2.0× longer
+// for 1–2 % more tetrahedra), apexes closer together (rock_32: 1.22×, 4 % fewer), flatter
+// tetrahedra at an apex kept (rock_32: 1.16×, 9 % fewer), more rounds (ballast_13: 1.91×), an
+// apex per lifted face, in that order until a mesh meets the bound. The mesh of least work
+// (below) is kept.
+Lifted repair_cost(Lifting& lifting, const SurfaceMesh& surface, Lifted chosen, bool own_tried) {
+  TetOptions& options = lifting.options;
+  bool& share_apexes = lifting.share_apexes;
   // Work per simulated second: tetrahedra × element frequency. A variant is taken only when its
   // contact step is not shorter either (StepScales::contact_frequency2): where the contact sets
   // the run's step, a longer element step alone buys nothing (ballast_37 of the set at 250
@@ -561,7 +587,7 @@ TetMesh tetrahedralize(const SurfaceMesh& input, const TetOptions& options_in) {
         share_apexes = false;
         break;
     }
-    Lifted tried = lift_rounds();
+    Lifted tried = lifting.rounds();
     // Never bought with the step bound above: a cheaper mesh whose step falls below it is not
     // taken (ballast_29 of the set at 2000 faces: 0.322 of h/c).
     const bool within_bound =
@@ -577,7 +603,47 @@ TetMesh tetrahedralize(const SurfaceMesh& input, const TetOptions& options_in) {
       break;
     }
   }
-  return std::move(chosen.mesh);
+  return chosen;
+}
+
+}  // namespace
+
+TetMesh tetrahedralize(const SurfaceMesh& input, const TetOptions& options_in) {
+  TetOptions options = options_in;
+  if (options.max_steiner_points < 0)
+    options.max_steiner_points = default_steiner_budget(input, options.element_size);
+  const SurfaceMesh surface =
+      options.element_size.set() ? subdivide_surface(input, options.element_size) : input;
+  TetMesh tm = first_tetrahedralization(surface, options);
+  if (options.min_surface_height_ratio <= 0) return tm;
+  Lifting lifting(surface, tm, options);
+  const Lifted shared = lifting.rounds();
+  // An element step still below the bound (TetOptions::min_element_step_ratio) is set by the
+  // flat tetrahedra that a shared apex leaves: an apex shared by a fan of faces stands high
+  // over each but far across some (ballast_29 of the study at 2000 faces: an apex shared by 11
+  // faces, the step's tetrahedron on one of them 0.12 high across its longest edge, which no
+  // round reaches since its height over the face passes). The rounds run again with an apex
+  // of its own for every lifted face, and that mesh is kept when its element step is longer.
+  // Only where the surface triangles are the elements' faces (no element size): the bound is
+  // the for those meshes; with an element size the step is the size's, and the study's
+  // refined references (rock_02's at 0.08 and 0.04 R, graded at 0.15: 0.098 and 0.147 of the
+  // bisected surface's h/c) stay as they were made.
+  Lifted chosen = shared;
+  bool own_tried = false;
+  if (options.min_element_step_ratio > 0 && !options.element_size.set() &&
+      element_step_ratio(surface, shared.element_frequency) < options.min_element_step_ratio) {
+    lifting.share_apexes = false;
+    Lifted own = lifting.rounds();
+    lifting.share_apexes = true;
+    own_tried = true;
+    if (own.element_frequency < shared.element_frequency) chosen = std::move(own);
+  }
+  if (options.min_mean_edge_step_ratio <= 0 || options.element_size.set() ||
+      mean_edge_step_ratio(surface, chosen.element_frequency) >= options.min_mean_edge_step_ratio) {
+    return std::move(chosen.mesh);
+  }
+  Lifted repaired = repair_cost(lifting, surface, std::move(chosen), own_tried);
+  return std::move(repaired.mesh);
 }
 
 }  // namespace asperity::geometry

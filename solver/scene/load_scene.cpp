@@ -184,6 +184,187 @@ ContactDef parse_contact(const JsonReader& c) {
   return out;
 }
 
+// The step keys: dt (a number or "auto"), dt_safety, allow_unsafe_dt, unstable_energy_growth.
+void parse_step(const JsonReader& r, SceneDef& s) {
+  if (r.has("dt")) {
+    const auto& dt = r.value().at("dt");
+    if (dt.is_string()) {
+      if (dt.get<std::string>() != "auto")
+        r.fail("dt", "must be a number or \"auto\" (got " + io::echo(dt) + ")");
+    } else {
+      s.dt = r.positive("dt");
+    }
+  }
+  // A safety factor above 1 is past the predicted limit by construction.
+  if (r.has("dt_safety")) s.dt_safety = r.in_range("dt_safety", 0.0, 1.0, true, false);
+  s.allow_unsafe_dt = r.boolean_or("allow_unsafe_dt", false);
+  if (r.has("unstable_energy_growth"))
+    s.unstable_energy_growth = r.positive("unstable_energy_growth");
+}
+
+// The materials, by name; `law_given` lists those that name an elastic law (checked once the
+// bodies are known: check_elastic_laws).
+std::map<std::string, int> parse_materials(const JsonReader& mats,
+                                           const std::filesystem::path& file, SceneDef& s,
+                                           std::vector<std::string>& law_given) {
+  mats.require_object();
+  if (mats.value().empty()) mats.fail("", "must define at least one material");
+  if (mats.value().size() > kMaxMaterials) {
+    mats.fail("", std::to_string(mats.value().size()) + " materials, more than the " +
+                      std::to_string(kMaxMaterials) +
+                      " a scene may define (every pair of them is set up before the run)");
+  }
+  std::map<std::string, int> material_index;
+  for (const auto& [name, m] : mats.value().items()) {
+    material_index[name] = static_cast<int>(s.materials.size());
+    const JsonReader mr(m, file, mats.path() + "." + name);
+    s.materials.push_back(parse_material(mr, name));
+    if (mr.has("law")) law_given.push_back(name);
+  }
+  return material_index;
+}
+
+// One body (its keys checked, its name already read and checked unique).
+BodyDef parse_body(const JsonReader& b, BodyDef body,
+                   const std::map<std::string, int>& material_index) {
+  const std::string mat = b.string("material");
+  auto it = material_index.find(mat);
+  if (it == material_index.end()) b.fail("material", "no material named \"" + mat + "\"");
+  body.material = it->second;
+  body.shape = parse_shape(b.child("shape"));
+  if (b.has("model")) {
+    const std::string model = b.string("model");
+    if (model == "rigid") {
+      body.model = Model::rigid;
+    } else if (model == "fem") {
+      body.model = Model::fem;
+    } else {
+      b.fail("model", "must be \"rigid\" or \"fem\" (got \"" + model + "\")");
+    }
+  }
+  body.position = b.vec3_or("position", Vec3::Zero());
+  body.velocity = b.vec3_or("velocity", Vec3::Zero());
+  // Newtonian contact mechanics ends well below the speed of light; beyond it the step bounds
+  // (which scale with 1/v) underflow to 0 and the message would be "inf steps of 0 s".
+  // (The norm of [0, 0, 1e308] overflows to inf, which still compares above.)
+  if (body.velocity.norm() > kSpeedOfLight) {
+    b.fail("velocity", "faster than light (got " + io::echo(b.value().at("velocity")) +
+                           " m/s; the speed of light is 299792458 m/s)");
+  }
+  body.angular_velocity = b.vec3_or("angular_velocity", Vec3::Zero());
+  const bool is_wall = std::holds_alternative<PlaneShape>(body.shape) ||
+                       std::holds_alternative<BoxShape>(body.shape);
+  body.fixed = b.boolean_or("fixed", is_wall);
+  if (is_wall && !body.fixed)
+    b.fail("fixed", "planes and boxes are fixed bodies; use a mesh body for a moving block");
+  if (is_wall && body.model == Model::fem)
+    b.fail("model", "planes and boxes are rigid; use a mesh body for a deformable block");
+  if (std::holds_alternative<SphereShape>(body.shape) && body.model == Model::fem) {
+    b.fail("model", "a sphere is rigid here; mesh it (shape \"mesh\") to make it deformable");
+  }
+  if (b.has("damping_ratio")) {
+    if (body.model != Model::fem || body.fixed)
+      b.fail("damping_ratio", "only a moving deformable body (model \"fem\") takes damping");
+    body.damping_ratio = b.in_range("damping_ratio", 0.0, 100.0, false, false);
+  }
+  return body;
+}
+
+// An elastic law acts on a deformable body's tetrahedra only: a law on a material that no fem
+// body uses would be silently ignored, so it is refused like any other key that does nothing.
+void check_elastic_laws(const JsonReader& mats, const SceneDef& s,
+                        const std::map<std::string, int>& material_index,
+                        const std::vector<std::string>& law_given) {
+  for (const std::string& name : law_given) {
+    const int index = material_index.at(name);
+    bool used = false;
+    for (const BodyDef& body : s.bodies) used |= body.material == index && body.model == Model::fem;
+    if (!used) {
+      mats.child(name).fail("law",
+                            "only deformable bodies (model \"fem\") take an elastic law, "
+                            "and no fem body uses material \"" +
+                                name + "\"");
+    }
+  }
+}
+
+// The potential law acts between tetrahedral meshes; a sphere has none (say so here, where the
+// key is known, rather than as a shape problem in the runner).
+void check_potential_bodies(const JsonReader& r, const SceneDef& s) {
+  if (s.contact.law == ContactLaw::potential) {
+    for (std::size_t i = 0; i < s.bodies.size(); ++i) {
+      if (std::holds_alternative<SphereShape>(s.bodies[i].shape)) {
+        r.child("contact").fail(
+            "law", "\"potential\" acts between meshed bodies, and bodies[" + std::to_string(i) +
+                       "] is a sphere; use hertz, hertz-mindlin or linear, or mesh the sphere "
+                       "(shape \"mesh\")");
+      }
+    }
+  }
+}
+
+// A penalty in Pa is held to the α range as well: p/E of the largest Young's modulus of the
+// moving bodies (of all, when none moves), as fdem::contact_penalty takes it.
+void check_penalty_range(const JsonReader& r, const SceneDef& s) {
+  if (s.contact.penalty) {
+    double young = 0;
+    for (const BodyDef& b : s.bodies)
+      if (!b.fixed) young = std::max(young, s.materials[b.material].young);
+    if (young == 0)
+      for (const BodyDef& b : s.bodies) young = std::max(young, s.materials[b.material].young);
+    const double alpha = *s.contact.penalty / young;
+    if (!(alpha >= kMinPenaltyAlpha && alpha <= 1e6)) {
+      std::ostringstream m;
+      m << *s.contact.penalty << " Pa is " << alpha
+        << " times the largest moving body's Young's modulus (" << young << " Pa); it must be "
+        << kMinPenaltyAlpha << " to 1e+06 times it";
+      r.child("contact").fail("penalty", m.str());
+    }
+  }
+}
+
+// The output block (docs/scenes.md): ParaView frames.
+OutputDef parse_output(const JsonReader& out) {
+  OutputDef o;
+  out.only_keys_in(keys::kOutput);
+  if (out.has("vtk_every")) {
+    o.vtk_every = static_cast<int>(out.integer("vtk_every", 1, 1'000'000'000));
+  }
+  if (out.has("vtk_format")) {
+    const std::string f = out.string("vtk_format");
+    if (f != "base64" && f != "ascii") {
+      out.fail("vtk_format", "must be \"base64\" or \"ascii\" (got \"" + f + "\")");
+    }
+    o.vtk_ascii = f == "ascii";
+  }
+  return o;
+}
+
+// The record block, or by default the first free body (else the first), every step.
+RecordDef parse_record(const JsonReader& r, const SceneDef& s) {
+  RecordDef rd;
+  if (r.has("record")) {
+    const JsonReader rec = r.child("record");
+    rec.only_keys_in(keys::kRecord);
+    const std::string who = rec.string("force_on");
+    rd.body = -1;
+    for (std::size_t i = 0; i < s.bodies.size(); ++i) {
+      if (s.bodies[i].name == who) rd.body = static_cast<int>(i);
+    }
+    if (rd.body < 0) rec.fail("force_on", "no body named \"" + who + "\"");
+    if (rec.has("every")) rd.every = static_cast<int>(rec.integer("every", 1, 1'000'000'000));
+    if (rec.has("end_after_separation")) {
+      rd.end_after_separation = rec.positive("end_after_separation");
+    }
+  } else {
+    for (std::size_t i = 0; i < s.bodies.size() && rd.body < 0; ++i) {
+      if (!s.bodies[i].fixed) rd.body = static_cast<int>(i);
+    }
+    if (rd.body < 0) rd.body = 0;
+  }
+  return rd;
+}
+
 }  // namespace
 
 SceneDef parse_scene(const io::Json& json, const std::filesystem::path& file,
@@ -201,38 +382,10 @@ SceneDef parse_scene(const io::Json& json, const std::filesystem::path& file,
   s.name = r.has("name") ? r.string("name") : file.stem().string();
   s.gravity = r.vec3_or("gravity", Vec3::Zero());
   s.duration = r.positive("duration");
-  if (r.has("dt")) {
-    const auto& dt = r.value().at("dt");
-    if (dt.is_string()) {
-      if (dt.get<std::string>() != "auto")
-        r.fail("dt", "must be a number or \"auto\" (got " + io::echo(dt) + ")");
-    } else {
-      s.dt = r.positive("dt");
-    }
-  }
-  // A safety factor above 1 is past the predicted limit by construction.
-  if (r.has("dt_safety")) s.dt_safety = r.in_range("dt_safety", 0.0, 1.0, true, false);
-  s.allow_unsafe_dt = r.boolean_or("allow_unsafe_dt", false);
-  if (r.has("unstable_energy_growth"))
-    s.unstable_energy_growth = r.positive("unstable_energy_growth");
-
+  parse_step(r, s);
   const JsonReader mats = r.child("materials");
-  mats.require_object();
-  if (mats.value().empty()) mats.fail("", "must define at least one material");
-  if (mats.value().size() > kMaxMaterials) {
-    mats.fail("", std::to_string(mats.value().size()) + " materials, more than the " +
-                      std::to_string(kMaxMaterials) +
-                      " a scene may define (every pair of them is set up before the run)");
-  }
-  std::map<std::string, int> material_index;
-  std::vector<std::string> law_given;  // materials that name an elastic law (checked below)
-  for (const auto& [name, m] : mats.value().items()) {
-    material_index[name] = static_cast<int>(s.materials.size());
-    const JsonReader mr(m, file, mats.path() + "." + name);
-    s.materials.push_back(parse_material(mr, name));
-    if (mr.has("law")) law_given.push_back(name);
-  }
-
+  std::vector<std::string> law_given;
+  const std::map<std::string, int> material_index = parse_materials(mats, file, s, law_given);
   const JsonReader bodies = r.child("bodies");
   const std::size_t n = bodies.require_array();
   if (n == 0) bodies.fail("", "must list at least one body");
@@ -244,129 +397,14 @@ SceneDef parse_scene(const io::Json& json, const std::filesystem::path& file,
     body.name = b.string("name");
     if (!names.insert(body.name).second)
       b.fail("name", "duplicate body name \"" + body.name + "\"");
-    const std::string mat = b.string("material");
-    auto it = material_index.find(mat);
-    if (it == material_index.end()) b.fail("material", "no material named \"" + mat + "\"");
-    body.material = it->second;
-    body.shape = parse_shape(b.child("shape"));
-    if (b.has("model")) {
-      const std::string model = b.string("model");
-      if (model == "rigid") {
-        body.model = Model::rigid;
-      } else if (model == "fem") {
-        body.model = Model::fem;
-      } else {
-        b.fail("model", "must be \"rigid\" or \"fem\" (got \"" + model + "\")");
-      }
-    }
-    body.position = b.vec3_or("position", Vec3::Zero());
-    body.velocity = b.vec3_or("velocity", Vec3::Zero());
-    // Newtonian contact mechanics ends well below the speed of light; beyond it the step bounds
-    // (which scale with 1/v) underflow to 0 and the message would be "inf steps of 0 s".
-    // (The norm of [0, 0, 1e308] overflows to inf, which still compares above.)
-    if (body.velocity.norm() > kSpeedOfLight) {
-      b.fail("velocity", "faster than light (got " + io::echo(b.value().at("velocity")) +
-                             " m/s; the speed of light is 299792458 m/s)");
-    }
-    body.angular_velocity = b.vec3_or("angular_velocity", Vec3::Zero());
-    const bool is_wall = std::holds_alternative<PlaneShape>(body.shape) ||
-                         std::holds_alternative<BoxShape>(body.shape);
-    body.fixed = b.boolean_or("fixed", is_wall);
-    if (is_wall && !body.fixed)
-      b.fail("fixed", "planes and boxes are fixed bodies; use a mesh body for a moving block");
-    if (is_wall && body.model == Model::fem)
-      b.fail("model", "planes and boxes are rigid; use a mesh body for a deformable block");
-    if (std::holds_alternative<SphereShape>(body.shape) && body.model == Model::fem) {
-      b.fail("model", "a sphere is rigid here; mesh it (shape \"mesh\") to make it deformable");
-    }
-    if (b.has("damping_ratio")) {
-      if (body.model != Model::fem || body.fixed)
-        b.fail("damping_ratio", "only a moving deformable body (model \"fem\") takes damping");
-      body.damping_ratio = b.in_range("damping_ratio", 0.0, 100.0, false, false);
-    }
-    s.bodies.push_back(std::move(body));
+    s.bodies.push_back(parse_body(b, std::move(body), material_index));
   }
-
-  // An elastic law acts on a deformable body's tetrahedra only: a law on a material that no fem
-  // body uses would be silently ignored, so it is refused like any other key that does nothing.
-  for (const std::string& name : law_given) {
-    const int index = material_index.at(name);
-    bool used = false;
-    for (const BodyDef& body : s.bodies) used |= body.material == index && body.model == Model::fem;
-    if (!used) {
-      mats.child(name).fail("law",
-                            "only deformable bodies (model \"fem\") take an elastic law, "
-                            "and no fem body uses material \"" +
-                                name + "\"");
-    }
-  }
-
+  check_elastic_laws(mats, s, material_index, law_given);
   if (r.has("contact")) s.contact = parse_contact(r.child("contact"));
-  // The potential law acts between tetrahedral meshes; a sphere has none (say so here, where the
-  // key is known, rather than as a shape problem in the runner).
-  if (s.contact.law == ContactLaw::potential) {
-    for (std::size_t i = 0; i < s.bodies.size(); ++i) {
-      if (std::holds_alternative<SphereShape>(s.bodies[i].shape)) {
-        r.child("contact").fail(
-            "law", "\"potential\" acts between meshed bodies, and bodies[" + std::to_string(i) +
-                       "] is a sphere; use hertz, hertz-mindlin or linear, or mesh the sphere "
-                       "(shape \"mesh\")");
-      }
-    }
-  }
-
-  // A penalty in Pa is held to the α range as well: p/E of the largest Young's modulus of the
-  // moving bodies (of all, when none moves), as fdem::contact_penalty takes it.
-  if (s.contact.penalty) {
-    double young = 0;
-    for (const BodyDef& b : s.bodies)
-      if (!b.fixed) young = std::max(young, s.materials[b.material].young);
-    if (young == 0)
-      for (const BodyDef& b : s.bodies) young = std::max(young, s.materials[b.material].young);
-    const double alpha = *s.contact.penalty / young;
-    if (!(alpha >= kMinPenaltyAlpha && alpha <= 1e6)) {
-      std::ostringstream m;
-      m << *s.contact.penalty << " Pa is " << alpha
-        << " times the largest moving body's Young's modulus (" << young << " Pa); it must be "
-        << kMinPenaltyAlpha << " to 1e+06 times it";
-      r.child("contact").fail("penalty", m.str());
-    }
-  }
-
-  if (r.has("output")) {
-    const JsonReader out = r.child("output");
-    out.only_keys_in(keys::kOutput);
-    if (out.has("vtk_every")) {
-      s.output.vtk_every = static_cast<int>(out.integer("vtk_every", 1, 1'000'000'000));
-    }
-    if (out.has("vtk_format")) {
-      const std::string f = out.string("vtk_format");
-      if (f != "base64" && f != "ascii") {
-        out.fail("vtk_format", "must be \"base64\" or \"ascii\" (got \"" + f + "\")");
-      }
-      s.output.vtk_ascii = f == "ascii";
-    }
-  }
-
-  if (r.has("record")) {
-    const JsonReader rec = r.child("record");
-    rec.only_keys_in(keys::kRecord);
-    const std::string who = rec.string("force_on");
-    s.record.body = -1;
-    for (std::size_t i = 0; i < s.bodies.size(); ++i) {
-      if (s.bodies[i].name == who) s.record.body = static_cast<int>(i);
-    }
-    if (s.record.body < 0) rec.fail("force_on", "no body named \"" + who + "\"");
-    if (rec.has("every")) s.record.every = static_cast<int>(rec.integer("every", 1, 1'000'000'000));
-    if (rec.has("end_after_separation")) {
-      s.record.end_after_separation = rec.positive("end_after_separation");
-    }
-  } else {
-    for (std::size_t i = 0; i < s.bodies.size() && s.record.body < 0; ++i) {
-      if (!s.bodies[i].fixed) s.record.body = static_cast<int>(i);
-    }
-    if (s.record.body < 0) s.record.body = 0;
-  }
+  check_potential_bodies(r, s);
+  check_penalty_range(r, s);
+  if (r.has("output")) s.output = parse_output(r.child("output"));
+  s.record = parse_record(r, s);
   return s;
 }
 
