@@ -1,5 +1,7 @@
 // `asperity crosscheck SCENE.json --out DIR [--peer yade|lammps|liggghts|calculix ...]`: the scene
-// in asperity and in each peer, side by side (peers/, docs/crosscheck.md).
+// in asperity and in each peer, side by side (peers/, docs/crosscheck.md); `asperity crosscheck
+// --list --peer P`: the validation cases P's gates run or must refuse (peers/peer_policy.hpp).
+#include <iostream>
 #include <memory>
 
 #include "app/cli_numbers.hpp"
@@ -7,6 +9,8 @@
 #include "app/out_folder.hpp"
 #include "peers/crosscheck.hpp"
 #include "peers/peer.hpp"
+#include "peers/peer_policy.hpp"
+#include "solver/core/error.hpp"
 
 namespace asperity::app {
 
@@ -15,6 +19,8 @@ void add_crosscheck_command(CLI::App& app, Action& action) {
     peers::CrosscheckOptions o;
     std::vector<std::string> peers;
     std::string yade, lammps, liggghts, calculix;
+    bool list = false;
+    std::filesystem::path policy = ASPERITY_PEER_POLICY, cases = ASPERITY_CASES_DIR;
   };
   auto args = std::make_shared<Args>();
   std::string names;
@@ -25,8 +31,9 @@ void add_crosscheck_command(CLI::App& app, Action& action) {
       "Run a scene (or a validation case's scene) in asperity and in each peer at asperity's "
       "step: writes DIR/asperity/, DIR/PEER/ (summary.json, force.csv, the peer's own files), "
       "DIR/comparison.json");
-  cc->add_option("scene", args->o.scene_file, "Scene file, or a validation case file")->required();
-  cc->add_option("--out", args->o.out, "Output folder")->required();
+  cc->add_option("scene", args->o.scene_file,
+                 "Scene file, or a validation case file (required unless --list)");
+  cc->add_option("--out", args->o.out, "Output folder (required unless --list)");
   cc->add_option("--peer", args->peers,
                  "Peer code(s): " + names + " (default yade; repeat or comma-separate for several)")
       ->delimiter(',');
@@ -48,8 +55,29 @@ void add_crosscheck_command(CLI::App& app, Action& action) {
       "Cost only: each code's plain run (no per-step recorder or dump), timed; writes "
       "DIR/cost.json (loop and whole-run CPU and wall seconds per code), compares nothing");
   cc->add_flag("-q,--quiet", args->o.quiet, "No summary lines on stderr");
+  cc->add_flag("--list", args->list,
+               "Run nothing: list on stdout the validation cases each --peer's gate runs (with its "
+               "tolerance) or must refuse (with the message expected), each with its why, as "
+               "--policy says (tab-separated: run|refused, case, file, ctest label, tolerance or "
+               "message, why)");
+  cc->add_option("--policy", args->policy,
+                 "With --list: the peer policy (default validation/peer_policy.json)");
+  cc->add_option("--cases", args->cases,
+                 "With --list: the folder of validation cases (default validation/cases)");
   cc->callback([args, &action] {
     action = [args] {
+      if (args->list) {
+        const std::vector<std::string> peers =
+            args->peers.empty() ? std::vector<std::string>{"yade"} : args->peers;
+        std::string text;
+        for (const std::string& peer : peers)
+          text += peers::gate_lines(peer, args->policy,
+                                    peers::peer_gates(args->policy, peer, args->cases));
+        std::cout << text;
+        return 0;
+      }
+      if (args->o.scene_file.empty()) throw InputError("crosscheck: SCENE is required");
+      if (args->o.out.empty()) throw InputError("crosscheck: --out is required");
       // A bad --out or --junit is exit 2 before anything runs.
       check_out_folder(args->o.out);
       if (args->o.junit) check_out_file(*args->o.junit, "--junit");

@@ -4,8 +4,9 @@
     peer_table.py ASPERITY_EXE OUT_DIR [--peers yade,lammps,liggghts] [--yade-table DIR] [--jobs N]
                   [--tables-only [--also-runs DIR]] [CASES...]
 
-Runs `asperity crosscheck CASE --peer P1,P2,... --only-expressible` once per case whose bodies
-are rigid spheres, planes and boxes (default: validation/cases), so every code's CPU time is for
+Runs `asperity crosscheck CASE --peer P1,P2,... --only-expressible` once per case that a sphere
+peer's gate takes (`asperity crosscheck --list`, from validation/peer_policy.json; default:
+validation/cases), so every code's CPU time is for
 the same scene and step and measured in one run on one machine, then writes OUT_DIR/peers.csv
 (one row per case and peer) and OUT_DIR/peers.md: per case and peer the relative differences
 (asperity − peer)/peer of peak force, impulse, contact duration and restitution, both CPU times
@@ -29,16 +30,13 @@ import sys
 ROOT = pathlib.Path(__file__).resolve().parents[2]
 
 
-def sphere_case(path):
-    c = json.loads(path.read_text())
-    s = c.get("scene", {})
-    if "sweep" in c or s.get("contact", {}).get("law") == "potential":
-        return False
-    # The rolling case runs 1.4 M steps: minutes in a per-step recorder (docs/crosscheck.md).
-    if "/friction/" in str(path):
-        return False
-    return all(b.get("shape", {}).get("type") in ("sphere", "plane", "box") and b.get("model", "rigid") == "rigid"
-               for b in s.get("bodies", []))
+def sphere_cases(exe):
+    """The case files some sphere peer's gate runs or refuses: `asperity crosscheck --list`, which
+    applies validation/peer_policy.json (the one place that says which cases the peers take)."""
+    out = subprocess.run([exe, "crosscheck", "--list", "--peer", "yade,lammps,liggghts"], check=True,
+                         capture_output=True, text=True).stdout
+    return {pathlib.Path(line.split("\t")[2]).resolve() for line in out.splitlines()
+            if line and not line.startswith("#")}
 
 
 def main(argv):
@@ -74,7 +72,8 @@ def main(argv):
     files = []
     for t in targets:
         files += sorted(t.rglob("*.json")) if t.is_dir() else [t]
-    files = [f for f in files if sphere_case(f)]
+    listed = sphere_cases(exe)
+    files = [f for f in files if f.resolve() in listed]
     rows, failed = [], []
     merged = set()  # cases with a peer from --also-runs
 
