@@ -111,8 +111,8 @@ struct ProcessRun {
 };
 ProcessRun timed_run(const Planned& p, const scene::SceneDef& s, const Resolved& r,
                      const fs::path& dir) {
-  fs::create_directories(dir);
-  for (const auto& e : fs::directory_iterator(dir)) fs::remove_all(e.path());
+  // Nothing from an earlier run may be mistaken for this one's.
+  io::empty_output_folder(dir);
   ProcessRun out;
   const double cpu0 = children_cpu_seconds();
   const auto wall0 = std::chrono::steady_clock::now();

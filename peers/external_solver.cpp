@@ -7,6 +7,7 @@
 
 #include "peers/peer.hpp"
 #include "solver/core/error.hpp"
+#include "solver/io/atomic_file.hpp"
 #include "solver/io/json_file.hpp"
 
 namespace asperity::peers {
@@ -98,8 +99,8 @@ void check_solver(const CaseSolver& solver, const std::vector<validation::CaseDe
 run::RunResult solve_case(const CaseSolver& solver, const validation::CaseDef& c,
                           const fs::path& dir) {
   if (solver.external()) {
-    fs::create_directories(dir);
-    for (const auto& e : fs::directory_iterator(dir)) fs::remove_all(e.path());
+    // Nothing from an earlier run may be mistaken for this one's.
+    io::empty_output_folder(dir);
     return run_command_solver(solver.command, c, dir);
   }
   const Adapter& a = find_adapter(solver.peer);

@@ -303,9 +303,8 @@ run::RunResult measure_trace(const scene::SceneDef& s, const Resolved& resolved,
 
 run::RunResult run_peer(const Adapter& a, const fs::path& exe, const scene::SceneDef& scene,
                         const Resolved& resolved, const fs::path& dir) {
-  fs::create_directories(dir);
   // Nothing from an earlier run may be mistaken for this one's.
-  for (const auto& e : fs::directory_iterator(dir)) fs::remove_all(e.path());
+  io::empty_output_folder(dir);
   const PeerTrace tr = a.run(scene, resolved, exe, dir, RunMode::trace);
   run::RunResult r = measure_trace(scene, resolved, tr, a.name);
   run::write_outputs(r, dir);

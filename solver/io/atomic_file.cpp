@@ -95,4 +95,42 @@ void remove_earlier_output(const std::filesystem::path& path) {
   std::filesystem::remove(path, ec);
 }
 
+namespace {
+
+// The first entry under `dir` (a real folder) that empty_output_folder may not remove, or "".
+std::string first_unremovable(const std::filesystem::path& dir) {
+  for (const auto& e : std::filesystem::directory_iterator(dir)) {
+    struct stat st {};
+    if (::lstat(e.path().c_str(), &st) != 0) continue;  // gone meanwhile
+    if (S_ISREG(st.st_mode) || S_ISLNK(st.st_mode)) continue;
+    if (S_ISDIR(st.st_mode)) {
+      if (std::string what = first_unremovable(e.path()); !what.empty()) return what;
+      continue;
+    }
+    return e.path().string() + ": is " + kind_of(st.st_mode);
+  }
+  return "";
+}
+
+}  // namespace
+
+void empty_output_folder(const std::filesystem::path& dir) {
+  struct stat st {};
+  if (::lstat(dir.c_str(), &st) != 0) {
+    std::filesystem::create_directories(dir);
+    return;
+  }
+  if (S_ISLNK(st.st_mode))
+    throw InputError(dir.string() + ": is a link where an output folder goes; asperity neither " +
+                     "follows nor empties it");
+  if (!S_ISDIR(st.st_mode))
+    throw InputError(dir.string() + ": is " + kind_of(st.st_mode) +
+                     " where an output folder goes; asperity neither replaces nor removes it");
+  if (const std::string what = first_unremovable(dir); !what.empty())
+    throw InputError(what + " in an output folder asperity would empty; nothing was removed");
+  // remove_all removes a link, never what it points to.
+  for (const auto& e : std::filesystem::directory_iterator(dir))
+    std::filesystem::remove_all(e.path());
+}
+
 }  // namespace asperity::io

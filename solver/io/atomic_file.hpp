@@ -27,4 +27,11 @@ std::string not_replaceable(const std::filesystem::path& path);
 // InputError naming it, and nothing is removed.
 void remove_earlier_output(const std::filesystem::path& path);
 
+// Makes `dir` an empty folder for a run's outputs (a peer's scratch and results): creates it when
+// absent, else removes what an earlier run left in it. Only regular files, links (never their
+// targets) and folders holding only those go. `dir` itself a link, or anything else in it (a
+// device, a FIFO, a socket), throws InputError naming it before anything is removed: a link
+// followed would empty a folder outside the output folder.
+void empty_output_folder(const std::filesystem::path& dir);
+
 }  // namespace asperity::io

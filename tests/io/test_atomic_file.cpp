@@ -95,5 +95,41 @@ TEST(AtomicFile, AnEarlierOutputGoesButNotWhatALinkPointsTo) {
   fs::remove_all(dir);
 }
 
+// A peer's output folder is emptied before its run: what an earlier run left goes (files, links,
+// subfolders), but never through a link: the folder itself a link, or a link inside it, leaves
+// the target's files in place, and a FIFO inside refuses before anything is removed.
+TEST(AtomicFile, AnOutputFolderIsEmptiedNeverThroughALink) {
+  const fs::path dir = fresh_dir("peer-folder");
+  const fs::path elsewhere = fresh_dir("peer-elsewhere");
+  std::ofstream(elsewhere / "keep.txt") << "mine";
+  // Emptied: a file, a nested folder, a link to the outside folder (the link goes, not its target).
+  fs::create_directories(dir / "run" / "scratch");
+  std::ofstream(dir / "run" / "force.csv") << "1";
+  std::ofstream(dir / "run" / "scratch" / "log") << "2";
+  fs::create_directory_symlink(elsewhere, dir / "run" / "link");
+  empty_output_folder(dir / "run");
+  EXPECT_TRUE(fs::is_directory(dir / "run"));
+  EXPECT_TRUE(fs::is_empty(dir / "run"));
+  EXPECT_EQ(text_of(elsewhere / "keep.txt"), "mine");
+  // Absent: created.
+  empty_output_folder(dir / "new");
+  EXPECT_TRUE(fs::is_directory(dir / "new"));
+  // The folder itself a link to another folder: refused, the target untouched.
+  fs::create_directory_symlink(elsewhere, dir / "linked");
+  EXPECT_THROW(empty_output_folder(dir / "linked"), InputError);
+  EXPECT_EQ(text_of(elsewhere / "keep.txt"), "mine");
+  // A FIFO inside: refused before anything goes.
+  std::ofstream(dir / "run" / "a.csv") << "3";
+  ASSERT_EQ(::mkfifo((dir / "run" / "pipe").c_str(), 0600), 0);
+  EXPECT_THROW(empty_output_folder(dir / "run"), InputError);
+  EXPECT_EQ(text_of(dir / "run" / "a.csv"), "3");
+  // A regular file where the folder goes: refused, kept.
+  std::ofstream(dir / "file") << "4";
+  EXPECT_THROW(empty_output_folder(dir / "file"), InputError);
+  EXPECT_EQ(text_of(dir / "file"), "4");
+  fs::remove_all(dir);
+  fs::remove_all(elsewhere);
+}
+
 }  // namespace
 }  // namespace asperity::io
