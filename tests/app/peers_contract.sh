@@ -2,7 +2,8 @@
 # The peer adapters and the external-solver gate through the program's contract (issue 14):
 # exit 2 for usage (unknown or uninstalled peer, a scene a peer cannot express, a --solver-cmd
 # without {scene} and {out}) with nothing written, exit 1 for a peer or solver that fails, JUnit
-# with readable messages, and the example solver: exact passes the Hertz cases, x1.05 fails them.
+# with readable messages, the example solver (exact passes the Hertz cases, x1.05 fails them), and
+# the gates' policy through `crosscheck --list`.
 # Needs the Debian packages yade, lammps, liggghts and calculix-ccx (deps/debian-packages.txt).
 set -u
 source "$(dirname "$0")/checks.sh"
@@ -43,6 +44,30 @@ check "--solver-cmd without {scene} {out} exits 2" test $? -eq 2
 check "--solver-cmd: nothing written" test ! -e "$work/u5"
 "$bin" validate "$mesh" --out "$work/u6" --solver lammps 2> "$work/u6.err"
 check "a sweep for --solver exits 2" test $? -eq 2
+
+# The gates' policy (validation/peer_policy.json) through `crosscheck --list`: every gate carries
+# its why; a policy entry without one, a peer without a policy, is exit 2 with one line naming it.
+"$bin" crosscheck --list --peer yade,lammps,liggghts > "$work/list.txt" 2> "$work/list.err"
+check "--list exits 0" test $? -eq 0
+check "--list: a header line per peer" test "$(grep -c '^# ' "$work/list.txt")" -eq 3
+check "--list: every gate has six fields, the last its why" \
+  awk -F '\t' '!/^#/ && (NF != 6 || $6 == "") { exit 1 }' "$work/list.txt"
+check "--list: the box cases are lammps's refusals" \
+  grep -qP "^refused\trecord\.record-on-box-oblique\t.*\tlammps\tshape: lammps: a box is not mapped\t" \
+  "$work/list.txt"
+python3 - "$src/validation/peer_policy.json" "$work/nowhy.json" <<'PY'
+import json, sys
+p = json.load(open(sys.argv[1]))
+p["peers"]["lammps"]["rules"][0]["why"] = ""
+json.dump(p, open(sys.argv[2], "w"))
+PY
+"$bin" crosscheck --list --peer lammps --policy "$work/nowhy.json" > /dev/null 2> "$work/nowhy.err"
+check "a rule without its why exits 2" test $? -eq 2
+check "a rule without its why: one line naming the key" \
+  grep -q "nowhy.json: peers.lammps.rules\[0\].why: must give the reason" "$work/nowhy.err"
+"$bin" crosscheck --list --peer calculix > /dev/null 2> "$work/nopolicy.err"
+check "a peer without a policy exits 2" test $? -eq 2
+check "a peer without a policy: one line" test "$(lines "$work/nopolicy.err")" -eq 1
 
 # A peer that runs and fails is a tool failure: exit 1, its reason on one line.
 "$bin" crosscheck "$plane" --out "$work/f1" --yade /bin/false 2> "$work/f1.err"
