@@ -178,7 +178,8 @@ Extrapolation richardson(const std::vector<double>& sizes, const std::vector<dou
       }
       const double p = 0.5 * (lo + hi);
       if (p >= kObservedOrderMin && p <= kObservedOrderMax) {
-        const double correction = d2 / (std::pow(s2 / s3, p) - 1);
+        e.weight = 1 / (std::pow(s2 / s3, p) - 1);
+        const double correction = e.weight * d2;
         e.limit = v3 + correction;
         e.error = kSafetyObserved * std::abs(correction) / std::abs(e.limit);
         e.order = p;
@@ -194,7 +195,17 @@ Extrapolation richardson(const std::vector<double>& sizes, const std::vector<dou
   e.limit = 0.5 * (lo + hi);
   e.error = e.limit != 0 ? 0.5 * std::abs(lo - hi) / std::abs(e.limit) : std::nan("");
   e.order = 0.5 * (kAssumedOrderLow + kAssumedOrderHigh);
+  e.weight =
+      0.5 * (1 / (std::pow(r, kAssumedOrderLow) - 1) + 1 / (std::pow(r, kAssumedOrderHigh) - 1));
   return e;
+}
+
+double extrapolate_like(const std::vector<double>& values, const Extrapolation& like) {
+  const std::size_t n = values.size();
+  if (n < 2 || !std::isfinite(like.weight)) return std::nan("");
+  const double v3 = values[n - 1], v2 = values[n - 2];
+  if (!std::isfinite(v3) || !std::isfinite(v2)) return std::nan("");
+  return v3 + like.weight * (v3 - v2);
 }
 
 const CaseData* StudyCases::find(const std::string& particle, ModelKind m, long resolution,

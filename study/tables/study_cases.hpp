@@ -69,11 +69,15 @@ inline constexpr double kSafetyObserved = 1.25;
 // A Richardson extrapolation of one metric along the refined levels (docs/study.md,
 // "The reference"): the limit, its estimated error (relative to the limit), the order used, and
 // whether that order was observed (three levels, monotone, in range) or assumed (the bracket).
+// Either way the limit is the finest value plus `weight` times the last change,
+// limit = v[n−1] + weight (v[n−1] − v[n−2]): weight = 1/((s[n−2]/s[n−1])^p − 1) at an observed
+// order p, the mean of the bracket's two such weights when assumed (extrapolate_like).
 struct Extrapolation {
   double limit = std::nan("");
   double error = std::nan("");  // relative: |estimate − limit| bound / |limit|
   double order = std::nan("");  // observed; or the bracket's middle when assumed
   bool observed = false;
+  double weight = std::nan("");  // of the last change, as above
 };
 // values[k] at element sizes sizes[k] (descending, at least two): with three or more, the
 // observed order of the last three when they change monotonically at an order within
@@ -81,6 +85,12 @@ struct Extrapolation {
 // correction as the error; otherwise the two finest levels extrapolated at both ends of the
 // assumed bracket, the limit their mean and the error half their spread.
 Extrapolation richardson(const std::vector<double>& sizes, const std::vector<double>& values);
+// The limit of another sequence `values` at the same sizes extrapolated with `like`'s order and
+// weight (not its own): values[n−1] + like.weight (values[n−1] − values[n−2]); NaN when `like`
+// has no weight or `values` has fewer than two finite levels. A sequence that differs from the
+// one `like` came from by a constant offset gets a limit that differs by exactly that offset,
+// whatever its own changes would say (the source reference's patch check, source_reference.hpp).
+double extrapolate_like(const std::vector<double>& values, const Extrapolation& like);
 
 // The fem refinement sequence of one (particle, resolution, placement): its answer (the finest
 // usable level; the coarse case when the study refines none), whether the last refinement moved
