@@ -95,9 +95,13 @@ void add_study_command(CLI::App& app, Action& action) {
       "study",
       "Particle-geometry study: particles x resolutions x models (fem, rigid, rigid-penalty, "
       "sphere, sphere-local) x placements, each striking a rigid block, fem also at element "
-      "sizes refined at the strike point (the key \"refinement\"; the reference is the "
-      "Richardson limit of the fem sequence at the finest resolution, with its estimated error); "
-      "resumable (finished cases are kept). Writes DIR/cases/, "
+      "sizes refined at the strike point (the key \"refinement\"). The key \"reference\" names "
+      "what every error is measured against: \"finest\" (default), the Richardson limit of the "
+      "fem sequence at the finest resolution, with its estimated error; or \"source\", the "
+      "particle itself: its source surface kept around the strike point, refined there in 3 "
+      "levels (\"reference_elements_across\", 3: the finest level's elements across Hertz's "
+      "contact radius; \"reference_patch_check\": also on the doubled patch), their Richardson "
+      "limit. Resumable (finished cases are kept). Writes DIR/cases/, "
       "DIR/cases.csv, DIR/classification.csv, DIR/guidelines.csv, DIR/answer.csv (what to use for "
       "2, 5 and 10 %) and DIR/study_summary.json. "
       "Under mpirun or srun the cases are spread over the ranks (docs/cluster.md)");

@@ -117,21 +117,35 @@ struct StudyCases {
   // sequence (the discretization error); NaN for other models.
   std::vector<double> discretization_error;
   std::map<std::string, Sequence> sequences;  // particle|resolution|placement, fem only
-  // The reference of each particle|placement: the limit of the fem sequence at the finest
-  // resolution (its Richardson extrapolation; `index` the finest case, whose curve the
-  // classification compares), and its uncertainty per metric, √(discretization² + geometry²):
-  // the extrapolation's estimated error, and the change of the limit from the next coarser
-  // resolution that was refined (is the finest geometry fine enough?).
+  // The reference of each particle|placement, by the study's "reference":
+  // - finest: the limit of the fem sequence at the finest resolution (its Richardson
+  //   extrapolation; `index` the finest case of `cases`, whose curve the classification
+  //   compares), and its uncertainty per metric, √(discretization² + geometry²): the
+  //   extrapolation's estimated error, and the change of the limit from the next coarser
+  //   resolution that was refined (is the finest geometry fine enough?).
+  // - source: the particle itself (study/source_reference.hpp), the Richardson limit of the
+  //   source reference's levels on the patch (`index` the finest of `source_cases`), and its
+  //   uncertainty per metric, √(discretization² + patch²): the extrapolation's estimated error and
+  //   the patch check's change (when run). No geometry term: the geometry is the particle's.
+  //   The first contact is the finest level's (the free flight's), its last change the error.
   struct Reference {
+    ReferenceKind kind = ReferenceKind::finest;
     std::size_t index = 0;
-    long resolution = 0;           // the finest resolution's N
+    long resolution = 0;           // the finest resolution's N (0: the source)
     long geometry_resolution = 0;  // the coarser N the geometry term compares with (0: none)
     int levels = 0;                // usable levels of its sequence, the coarse one included
     Extrapolation peak;            // the peak force's extrapolation (order, observed)
+    // The source: per metric (kMetrics but the first contact) its extrapolation, and whether the
+    // doubled patch ran.
+    Extrapolation source_limit[3];
+    bool patch_checked = false;
     Measures values;
     FemErrors discretization, geometry, uncertainty;
+    FemErrors patch;  // the source: the patch check's change per metric (signed; NaN: not run)
   };
   std::map<std::string, Reference> references;
+  // The source reference's cases (plan_source_cases order): empty for "finest".
+  std::vector<CaseData> source_cases;
   int done = 0, failed = 0;
 
   // The case, or nullptr when the study has none such.
@@ -139,12 +153,21 @@ struct StudyCases {
                        int level = 0) const;
   const Sequence* sequence(const std::string& particle, long resolution, Placement pl) const;
   const Reference* reference(const std::string& particle, Placement pl) const;
+  // The case whose force curve is the reference's (the finest level).
+  const CaseData& reference_case(const Reference& r) const {
+    return r.kind == ReferenceKind::source ? source_cases[r.index] : cases[r.index];
+  }
   std::size_t index_of(const CaseData& c) const {
     return static_cast<std::size_t>(&c - cases.data());
+  }
+  std::size_t index_of_source(const CaseData& c) const {
+    return static_cast<std::size_t>(&c - source_cases.data());
   }
   // A run that ended normally ("ok"): its measures can be compared.
   static bool usable(const CaseData* c) { return c && c->status == "ok"; }
   bool has_fem_reference() const;
+  // Whether the study has a reference at all: the fem model ("finest") or the source.
+  bool has_reference() const;
 
   std::map<std::string, std::size_t> index;  // particle|model|resolution|placement → case
 };
