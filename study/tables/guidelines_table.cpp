@@ -95,8 +95,11 @@ OJson write_guidelines(const StudyCases& s, const std::vector<CandidateStats>& s
       rows);
   OJson guidelines = {
       {"study", def.name},
+      // The reference the errors are against ("finest" or "source"); model, resolution and size:
+      // the study's finest fem, what recommend falls back to when no row meets a tolerance.
       {"reference",
-       {{"model", "fem"},
+       {{"kind", reference_name(def.reference_kind)},
+        {"model", "fem"},
         {"resolution", def.reference},
         {"element_size_rel", top > 0 ? OJson(def.refinement.sizes.back()) : OJson()},
         {"convergence_tolerance", def.refinement.tolerance}}},

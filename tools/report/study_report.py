@@ -809,6 +809,28 @@ def axes_section(doc, study, cases):
                "converged (< 1 %)"], per)
 
 
+def source_reference_section(doc, references):
+    """The source reference ("reference": "source" in study.json; references.csv's source columns): the particle
+    itself, its source surface refined at the strike point in three levels, and the terms of its uncertainty."""
+    doc.p("Per particle: the reference is the particle itself (\"reference\": \"source\"): its source surface kept "
+          "around the strike point, refined there in three levels, and their Richardson limit, with the order and "
+          "whether it was observed; its uncertainty adds in quadrature the extrapolation's estimated error "
+          "(discretization) and, where the doubled patch ran, the patch check's change ('-' where not run). Every "
+          "error of this report is against it: there is no geometry term.")
+    rows = []
+    for r in references:
+        order = r["peak_force_source_order"]
+        rows.append([r["particle"], r["placement"], fmt(r["peak_force"]),
+                     (("observed " if r["peak_force_source_order_observed"] == "true" else "assumed ") + fmt(order, 3))
+                     if order else "-",
+                     pct(r["peak_force_discretization"]),
+                     pct(r["peak_force_patch_change"]) if r["peak_force_patch_change"] else "-",
+                     pct(r["peak_force_uncertainty"]), pct(r["contact_duration_uncertainty"]),
+                     pct(r["impulse_uncertainty"])])
+    doc.table(["particle", "placement", "peak force (N)", "order (peak)", "discretization", "patch check",
+               "uncertainty (peak)", "uncertainty (duration)", "uncertainty (impulse)"], rows)
+
+
 def references_section(doc, references, growth, contact_factor=0):
     """The reference of each particle and the two terms of its uncertainty (references.csv); `growth` the refined
     levels' far-field grading (study.json), whose bias the uncertainty does not include; `contact_factor` their
@@ -816,6 +838,9 @@ def references_section(doc, references, growth, contact_factor=0):
     if not references:
         return
     doc.h(2, "The reference and its uncertainty")
+    if any(r.get("reference") == "source" for r in references):
+        source_reference_section(doc, references)
+        return
     doc.p("Per particle: the reference (the limit of the fem sequence at the finest resolution), the order its peak "
           "force was extrapolated at (observed from three refined levels, or the assumed bracket's middle), and the "
           "two terms of its uncertainty, added in quadrature: discretization (the extrapolation's estimated error) "
