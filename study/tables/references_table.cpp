@@ -29,12 +29,15 @@ void write_references_table(const StudyCases& s, const std::filesystem::path& di
         row.push_back(finite_or_null(r->uncertainty.metric(k)));
       }
       // The source reference's own columns (empty for "finest"): per metric the extrapolation's
-      // order and whether observed, and the patch check's change (empty where not run).
+      // order and whether observed, the order of the levels' changes (tables::Extrapolation::
+      // changes_order: beside an assumed order, how far from asymptotic the levels are), and the
+      // patch check's change (empty where not run).
       row.push_back(reference_name(r->kind));
       for (std::size_t k = 0; k + 1 < kMetricCount; ++k) {
         const Extrapolation& e = r->source_limit[k];
         row.push_back(source ? finite_or_null(e.order) : OJson());
         row.push_back(source && std::isfinite(e.order) ? OJson(e.observed) : OJson());
+        row.push_back(source ? finite_or_null(e.changes_order) : OJson());
         row.push_back(source && r->patch_checked ? finite_or_null(r->patch.metric(k)) : OJson());
       }
       rows.push_back(std::move(row));
@@ -49,7 +52,8 @@ void write_references_table(const StudyCases& s, const std::filesystem::path& di
   }
   header.push_back("reference");
   for (std::size_t k = 0; k + 1 < kMetricCount; ++k) {
-    for (const char* term : {"_source_order", "_source_order_observed", "_patch_change"})
+    for (const char* term :
+         {"_source_order", "_source_order_observed", "_changes_order", "_patch_change"})
       header.push_back(std::string(kMetrics[k]) + term);
   }
   write_csv(dir / "references.csv", header, rows);

@@ -239,6 +239,7 @@ Extrapolation richardson(const std::vector<double>& sizes, const std::vector<dou
         (ratio(mid) < target ? lo : hi) = mid;
       }
       const double p = 0.5 * (lo + hi);
+      e.changes_order = p;
       if (p >= kObservedOrderMin && p <= kObservedOrderMax) {
         e.weight = 1 / (std::pow(s2 / s3, p) - 1);
         const double correction = e.weight * d2;

@@ -78,6 +78,10 @@ struct Extrapolation {
   double order = std::nan("");  // observed; or the bracket's middle when assumed
   bool observed = false;
   double weight = std::nan("");  // of the last change, as above
+  // The order of the last three levels' changes whenever they fall monotonically, in the trusted
+  // range or not (NaN: fewer than three levels, or changes that oscillate or grow): an assumed
+  // order beside an order of changes far below the bracket says the levels are not asymptotic.
+  double changes_order = std::nan("");
 };
 // values[k] at element sizes sizes[k] (descending, at least two): with three or more, the
 // observed order of the last three when they change monotonically at an order within
