@@ -819,10 +819,14 @@ def source_reference_section(doc, references):
           "error of this report is against it: there is no geometry term.")
     rows = []
     for r in references:
-        order = r["peak_force_source_order"]
-        rows.append([r["particle"], r["placement"], fmt(r["peak_force"]),
-                     (("observed " if r["peak_force_source_order_observed"] == "true" else "assumed ") + fmt(order, 3))
-                     if order else "-",
+        order, changes = r["peak_force_source_order"], r.get("peak_force_changes_order", "")
+        said = "-"
+        if order:
+            observed = r["peak_force_source_order_observed"] == "true"
+            said = ("observed " if observed else "assumed ") + fmt(order, 3)
+            if not observed and changes:  # the levels' own order, outside the trusted range
+                said += f" (levels: {fmt(changes, 2)})"
+        rows.append([r["particle"], r["placement"], fmt(r["peak_force"]), said,
                      pct(r["peak_force_discretization"]),
                      pct(r["peak_force_patch_change"]) if r["peak_force_patch_change"] else "-",
                      pct(r["peak_force_uncertainty"]), pct(r["contact_duration_uncertainty"]),
