@@ -815,8 +815,10 @@ def source_reference_section(doc, references):
     doc.p("Per particle: the reference is the particle itself (\"reference\": \"source\"): its source surface kept "
           "around the strike point, refined there in three levels, and their Richardson limit, with the order and "
           "whether it was observed; its uncertainty adds in quadrature the extrapolation's estimated error "
-          "(discretization) and, where the doubled patch ran, the patch check's change ('-' where not run). Every "
-          "error of this report is against it: there is no geometry term.")
+          "(discretization) and, where the doubled patch ran, the patch check's change ('-' where not run). An "
+          "assumed order is followed by the levels' own order where they fall monotonically outside the range the "
+          "extrapolation trusts (0.5-5): those levels are not asymptotic. Every error of this report is against it: "
+          "there is no geometry term.")
     rows = []
     for r in references:
         order, changes = r["peak_force_source_order"], r.get("peak_force_changes_order", "")
