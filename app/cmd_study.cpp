@@ -40,7 +40,8 @@ int collect(const study::StudyDef& def, const StudyArgs& args) {
     std::fprintf(stderr,
                  "study %s: %d of %zu cases in %s have not run (a shard not run yet, cancelled or "
                  "out of time: run it again, then --collect); no table written\n",
-                 def.name.c_str(), unfinished, study::plan_cases(def).size(),
+                 def.name.c_str(), unfinished,
+                 study::plan_cases(def).size() + study::plan_source_cases(def).size(),
                  args.out.string().c_str());
     return kExitFailure;
   }
