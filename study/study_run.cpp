@@ -884,9 +884,9 @@ cluster::TaskReport run_case(const StudyDef& def, const fs::path& out, const Par
     thin_rows(result, def.rows);
     run::write_outputs(result, dir);
     // The study's own facts of the case (its CPU on this thread, where the run's cpu_seconds counts
-    // the time loop only; the element size at the strike point, m, null for the coarse default).
-    // The element size at the strike point: the refinement's over the reference mesh's R, or the
-    // source reference's level over the source's own R.
+    // the time loop only; the element size at the strike point, m, null for the coarse default:
+    // the refinement's over the reference mesh's R, or the source reference's level over the
+    // source's own R).
     double h = c.relative_size * pp.radius, h_rel = c.relative_size;
     if (c.source_patch > 0) {
       const ParticlePlan::Source& src = pp.source.at(c.source_patch);
@@ -900,7 +900,6 @@ cluster::TaskReport run_case(const StudyDef& def, const fs::path& out, const Par
         {"placement", placement_name(c.placement)},
         {"element_size", c.level > 0 ? OJson(h) : OJson()},
         {"element_size_rel", c.level > 0 ? OJson(h_rel) : OJson()},
-        {"source_patch", c.source_patch > 0 ? OJson(c.source_patch) : OJson()},
         {"status", result.status},
         {"start_gap", start_height(def, pp, c).second},
         {"duration", pp.duration},
@@ -908,6 +907,7 @@ cluster::TaskReport run_case(const StudyDef& def, const fs::path& out, const Par
         {"local_radii",
          c.model == ModelKind::sphere_local ? OJson{pp.local_r1, pp.local_r2} : OJson()},
         {"cpu_seconds", cpu}};
+    if (c.source_patch > 0) record["source_patch"] = c.source_patch;  // 1 the patch, 2 doubled
     io::write_atomically(dir / "case.json", record.dump(1) + "\n");
     char buf[64];
     std::snprintf(buf, sizeof buf, " %.2f s", cpu);
