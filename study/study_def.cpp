@@ -34,6 +34,10 @@ const char* model_name(ModelKind m) {
   return "?";
 }
 
+const char* reference_name(ReferenceKind r) {
+  return r == ReferenceKind::source ? "source" : "finest";
+}
+
 bool Refinement::applies(long resolution, Placement p) const {
   return !sizes.empty() &&
          (resolutions.empty() ||
@@ -107,16 +111,29 @@ StudyDef load_study(const fs::path& file) {
   const Json json = io::read_json_file(file);
   const JsonReader r(json, file, "");
   r.require_object();
-  r.only_keys({"name",          "description",
-               "particles",     "particle_size",
-               "resolutions",   "models",
-               "placements",    "refinement",
-               "speed",         "orientation",
-               "orientations",  "gap",
-               "duration",      "end_after_separation",
-               "penalty_alpha", "gravity",
-               "material",      "block_material",
-               "rows",          "jobs"});
+  r.only_keys({"name",
+               "description",
+               "particles",
+               "particle_size",
+               "resolutions",
+               "models",
+               "placements",
+               "refinement",
+               "speed",
+               "orientation",
+               "orientations",
+               "gap",
+               "duration",
+               "end_after_separation",
+               "penalty_alpha",
+               "gravity",
+               "material",
+               "block_material",
+               "rows",
+               "jobs",
+               "reference",
+               "reference_patch_check",
+               "reference_elements_across"});
   StudyDef s;
   s.file = file;
   s.name = r.has("name") ? r.string("name") : file.stem().string();
@@ -336,6 +353,23 @@ StudyDef load_study(const fs::path& file) {
   s.block_material =
       r.has("block_material") ? read_material(r.child("block_material"), "block", rock) : rock;
   s.block_material.name = "block";
+  if (r.has("reference")) {
+    const Json& v = r.value()["reference"];
+    if (v == "source")
+      s.reference_kind = ReferenceKind::source;
+    else if (v != "finest")
+      r.fail("reference", "must be \"source\" or \"finest\" (got " + io::echo(v) + ")");
+  }
+  for (const char* key : {"reference_patch_check", "reference_elements_across"}) {
+    if (r.has(key) && s.reference_kind != ReferenceKind::source)
+      r.fail(key, "applies only with \"reference\": \"source\"");
+  }
+  s.source_reference.patch_check = r.boolean_or("reference_patch_check", false);
+  // Fewer than 1 element across the contact radius resolves nothing of it; above 12 the finest
+  // level's tetrahedra run past the scene loader's limit on the study's particles.
+  if (r.has("reference_elements_across"))
+    s.source_reference.elements_across =
+        r.in_range("reference_elements_across", 1, 12, false, false);
   if (r.has("rows")) s.rows = static_cast<int>(r.integer("rows", 10, 1'000'000));
   if (r.has("jobs")) s.jobs = static_cast<int>(r.integer("jobs", 0, 1024));
   return s;
@@ -413,6 +447,11 @@ nlohmann::ordered_json definition_json(const StudyDef& def) {
                {"rows", def.rows}};
   // Only when given: the folders of studies without it keep their study.json.
   if (def.orientations > 0) out["orientations"] = {{"random", def.orientations}};
+  if (def.reference_kind == ReferenceKind::source) {
+    out["reference"] = reference_name(def.reference_kind);
+    out["reference_patch_check"] = def.source_reference.patch_check;
+    out["reference_elements_across"] = def.source_reference.elements_across;
+  }
   return out;
 }
 

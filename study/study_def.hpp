@@ -65,6 +65,22 @@ struct Refinement {
   bool applies(long resolution, Placement p) const;
 };
 
+// What every case's error is measured against (docs/study.md, "The reference"). `finest`: the
+// Richardson limit of the fem sequence at the finest resolution (issue 12; a simplification of
+// the particle). `source`: the particle itself, its source surface kept around the strike point
+// and refined there in levels (issue 28, study/source_reference.hpp), run per particle and
+// placement as cases of the study.
+enum class ReferenceKind { finest, source };
+const char* reference_name(ReferenceKind r);
+
+// The source reference's levels (study::SourceReferenceOptions' numbers) and the patch check.
+struct SourceReferenceDef {
+  // Hertz's contact radius at peak over the finest level's element size (issue 28: at least 3).
+  double elements_across = 3;
+  // Also run the levels on the doubled patch (the patch check: SourceMetric::patch_change).
+  bool patch_check = false;
+};
+
 struct StudyDef {
   std::filesystem::path file;  // where it was read from (for messages and relative paths)
   std::string name;
@@ -72,6 +88,8 @@ struct StudyDef {
   std::optional<double> particle_size;  // rescale every particle to this equivalent diameter, m
   std::vector<long> resolutions;        // surface triangles, ascending, the reference last
   long reference = 0;                   // the finest resolution (last of `resolutions`)
+  ReferenceKind reference_kind = ReferenceKind::finest;
+  SourceReferenceDef source_reference;  // with reference_kind source
   std::vector<ModelKind> models;
   std::vector<Placement> placements;
   Refinement refinement;

@@ -24,6 +24,7 @@
 #include "solver/core/error.hpp"
 #include "solver/fdem/fdem_world.hpp"
 #include "solver/fdem/time_step.hpp"
+#include "solver/geometry/contact_local_surface.hpp"
 #include "solver/geometry/element_size.hpp"
 #include "solver/geometry/mass_properties.hpp"
 #include "solver/geometry/mesh_pipeline.hpp"
@@ -34,6 +35,7 @@
 #include "solver/run/run_scene.hpp"
 #include "solver/scene/scene.hpp"
 #include "solver/scene/write_scene.hpp"
+#include "study/source_reference.hpp"
 #include "study/study_meshes.hpp"
 
 namespace asperity::study {
@@ -140,6 +142,12 @@ class Progress {
 // edge over the equivalent radius is about √(29/N) (N equilateral triangles on a sphere's area
 // × 1.2), so the case costs about that ratio more per step.
 double case_weight(const CaseKey& c) {
+  if (c.source_patch > 0) {
+    // As a refined case at 2000 triangles whose size halves per level from the median finest
+    // a/3 (a/R 0.065, docs/study.md "The source reference"): they run first.
+    const double size = 0.065 / 3 * std::pow(2.0, SourceReferenceOptions{}.levels - c.level);
+    return std::pow(20.0, 1.4) * std::sqrt(29.0 / 2000.0) / size;
+  }
   const double n = std::pow(static_cast<double>(c.resolution) / 100.0, 1.4);
   switch (c.model) {
     case ModelKind::fem:
@@ -161,6 +169,10 @@ double case_weight(const CaseKey& c) {
 fs::path mesh_dir(const fs::path& out, const std::string& particle, long faces) {
   return out / "meshes" / particle / std::to_string(faces);
 }
+// The source reference's contact-local surface: patch 1 (the patch) or 2 (doubled).
+fs::path source_mesh_dir(const fs::path& out, const std::string& particle, int patch) {
+  return out / "meshes" / particle / (patch == 1 ? "source" : "source-patch2");
+}
 
 // Per particle, from its meshes: where each case starts and how long every case runs.
 struct ParticlePlan {
@@ -174,6 +186,15 @@ struct ParticlePlan {
   double local_radius = 0, local_r1 = 0, local_r2 = 0;
   double duration = 0, contact_time = 0;  // s
   std::string mesh_error;                 // non-empty: a resolution failed to mesh
+  // The source reference's surfaces, by patch (1, 2), from their mesh.json.
+  struct Source {
+    Vec3 strike_point = Vec3::Zero();  // surface.off's coordinates, m
+    double centroid_height = 0;        // centroid above the strike point, m
+    double radius = 0;                 // the source's equivalent radius, m
+    std::vector<double> sizes;         // element sizes at the strike point, m, coarsest first
+  };
+  std::map<int, Source> source;
+  std::string source_error;  // non-empty: a source reference surface failed
 };
 
 // Height of the centroid of case c above the block top (z = 0), and the gap under its lowest
@@ -187,7 +208,14 @@ std::pair<double, double> start_height(const StudyDef& def, const ParticlePlan& 
                                        const CaseKey& c) {
   double reach = 0;
   for (const auto& [n, h] : pp.centroid_height) reach = std::max(reach, h);
+  // The particle itself (the source reference's surfaces) reaches as low as any simplification.
+  for (const auto& [patch, src] : pp.source) reach = std::max(reach, src.centroid_height);
   const double ref = def.gap + reach;
+  if (c.source_patch > 0) {
+    const double h = pp.source.at(c.source_patch).centroid_height;
+    const double z = c.placement == Placement::centroid ? ref : def.gap + h;
+    return {z, z - h};
+  }
   if (c.model == ModelKind::sphere) {
     const double z = c.placement == Placement::centroid ? std::max(ref, def.gap + pp.radius)
                                                         : def.gap + pp.radius;
@@ -292,6 +320,40 @@ scene::SceneDef case_scene(const StudyDef& def, const fs::path& out, const Parti
   return s;
 }
 
+// A source reference case's scene: the contact-local surface of its patch, refined at the strike
+// point to the level's size and graded as the study's refinement (focus_radius, growth,
+// max_contact_factor), on the fem path of every refined case: the same block, penalty, record and
+// end (study/source_reference.hpp; docs/study.md, "The source reference").
+scene::SceneDef source_case_scene(const StudyDef& def, const fs::path& out, const ParticlePlan& pp,
+                                  const CaseKey& c) {
+  const ParticlePlan::Source& src = pp.source.at(c.source_patch);
+  const double h = src.sizes.at(static_cast<std::size_t>(c.level - 1));
+  // The fem case's scene at the finest resolution with the mesh, start and rows swapped: one path.
+  CaseKey coarse = c;
+  coarse.source_patch = 0;
+  coarse.level = 0;
+  coarse.resolution = def.reference;
+  scene::SceneDef s = case_scene(def, out, pp, coarse);
+  s.name = c.particle + "-" + c.dir_name();
+  scene::BodyDef& particle = s.bodies.front();
+  particle.position = Vec3(0, 0, start_height(def, pp, c).first);
+  scene::MeshShape mesh{.file = source_mesh_dir(out, c.particle, c.source_patch) / "surface.off"};
+  mesh.element_size = h;
+  mesh.element_size_focus = src.strike_point;
+  mesh.element_size_focus_radius = def.refinement.focus_radius * h;
+  mesh.element_size_growth = def.refinement.growth;
+  particle.shape = mesh;
+  // The rows kept: the step falls about as h over the reference mesh's surface edge (case_weight).
+  const double dt =
+      pp.dt_fem.at(def.reference) *
+      std::min(1.0, h / pp.radius / std::sqrt(29.0 / static_cast<double>(def.reference)));
+  s.record.every = static_cast<int>(std::max(1L, static_cast<long>(pp.duration / dt / def.rows)));
+  if (def.refinement.max_contact_factor > 0) {
+    s.contact.max_contact_factor = def.refinement.max_contact_factor;
+  }
+  return s;
+}
+
 // Keeps about `rows` force and energy rows (every k-th, and the last): the summary's measures
 // come from every step; the rows are for the charts.
 void thin_rows(run::RunResult& r, int rows) {
@@ -324,6 +386,10 @@ double estimated_dt(const TetMesh& tets, const StudyDef& def, fdem::BodyKind kin
 }  // namespace
 
 std::string CaseKey::dir_name() const {
+  if (source_patch > 0) {
+    return std::string(source_patch == 1 ? "source-L" : "source-patch2-L") + std::to_string(level) +
+           "-" + placement_name(placement);
+  }
   if (model == ModelKind::sphere) return std::string("sphere-") + placement_name(placement);
   if (model == ModelKind::sphere_local)
     return std::string("sphere-local-") + placement_name(placement);
@@ -343,9 +409,11 @@ fs::path case_dir(const fs::path& out, const CaseKey& key) {
 
 int unfinished_cases(const StudyDef& def, const fs::path& out) {
   int n = 0;
-  for (const CaseKey& k : plan_cases(def)) {
-    const fs::path dir = case_dir(out, k);
-    n += !fs::exists(dir / "case.json") && !fs::exists(dir / "failed.json");
+  for (const auto& plan : {plan_cases(def), plan_source_cases(def)}) {
+    for (const CaseKey& k : plan) {
+      const fs::path dir = case_dir(out, k);
+      n += !fs::exists(dir / "case.json") && !fs::exists(dir / "failed.json");
+    }
   }
   return n;
 }
@@ -369,6 +437,27 @@ std::vector<CaseKey> plan_cases(const StudyDef& def) {
           for (std::size_t k = 0; k < def.refinement.sizes.size(); ++k) {
             out.push_back({p.name, m, n, pl, static_cast<int>(k + 1), def.refinement.sizes[k]});
           }
+        }
+      }
+    }
+  }
+  return out;
+}
+
+std::vector<CaseKey> plan_source_cases(const StudyDef& def) {
+  std::vector<CaseKey> out;
+  if (def.reference_kind != ReferenceKind::source) return out;
+  const int patches = def.source_reference.patch_check ? 2 : 1;
+  for (const ParticleSource& p : def.particles) {
+    for (Placement pl : def.placements) {
+      for (int patch = 1; patch <= patches; ++patch) {
+        for (int level = 1; level <= SourceReferenceOptions{}.levels; ++level) {
+          out.push_back({.particle = p.name,
+                         .model = ModelKind::fem,
+                         .resolution = 0,
+                         .placement = pl,
+                         .level = level,
+                         .source_patch = patch});
         }
       }
     }
@@ -538,7 +627,8 @@ void write_sources(const StudyDef& def, const fs::path& out,
 
 struct MeshTask {
   std::size_t particle;
-  long faces;
+  long faces;            // 0 for the source reference's surfaces
+  int source_patch = 0;  // 1, 2: the source reference's surface on the patch, doubled patch
 };
 struct Meshes {
   std::vector<MeshTask> tasks;
@@ -585,6 +675,69 @@ cluster::TaskReport make_mesh(const StudyDef& def, const fs::path& out, const Me
   }
 }
 
+// The source reference's options from the study: the levels' numbers (SourceReferenceOptions)
+// but the finest size's elements across the contact radius.
+SourceReferenceOptions source_options(const StudyDef& def) {
+  SourceReferenceOptions o;
+  o.elements_across = def.source_reference.elements_across;
+  return o;
+}
+
+// The source reference's surface of one patch: the plan (strike point, Hertz contact radius at
+// peak, the levels' element sizes) and the contact-local surface, kept when an earlier run made
+// them from the same source, impact and options. mesh.json: the plan, the surface's centroid
+// height above the strike point, the triangles kept and the CPU.
+cluster::TaskReport make_source_mesh(const StudyDef& def, const fs::path& out, const MeshTask& t,
+                                     const SurfaceMesh& source) {
+  const ParticleSource& p = def.particles[t.particle];
+  const SourceReferenceOptions options = source_options(def);
+  std::ostringstream tag;
+  tag.precision(17);
+  tag << source_tag(def, p, t.particle)
+      << " source-reference patch=" << t.source_patch * options.patch
+      << " far_faces=" << options.far_faces << " levels=" << options.levels
+      << " elements_across=" << options.elements_across << " speed=" << def.speed
+      << " material=" << material_json(def.material).dump();
+  const std::string label = p.name + (t.source_patch == 1 ? " source" : " source-patch2");
+  const fs::path dir = source_mesh_dir(out, p.name, t.source_patch);
+  const double cpu0 = thread_cpu_seconds();
+  try {
+    const fs::path report = dir / "mesh.json";
+    if (fs::exists(report) && io::read_json_file(report).value("study_source", "") == tag.str()) {
+      return {.skipped = true, .note = label + " (kept)"};
+    }
+    const SourceReferencePlan plan =
+        plan_source_reference(source, def.material, def.speed, options);
+    const geometry::ContactLocalSurface local = geometry::contact_local_surface(
+        source, {.centre = plan.strike_point,
+                 .radius = t.source_patch * options.patch * plan.equivalent_radius,
+                 .far_faces = options.far_faces});
+    fs::create_directories(dir);
+    io::remove_earlier_output(report);
+    geometry::write_surface_mesh(dir / "surface.off", local.surface);
+    const Vec3& f = plan.strike_point;
+    const OJson j = {
+        {"study_source", tag.str()},
+        {"patch_rel", t.source_patch * options.patch},
+        {"source_faces", local.source_faces},
+        {"kept_faces", local.kept_faces},
+        {"faces", local.surface.faces.cols()},
+        {"strike_point", {f.x(), f.y(), f.z()}},
+        {"centroid_height", geometry::mass_properties(local.surface).centroid.z() - f.z()},
+        {"equivalent_radius", plan.equivalent_radius},
+        {"mass", plan.mass},
+        {"local_radius", plan.local_radius},
+        {"contact_radius", plan.contact_radius},
+        {"hertz_peak_force", plan.peak_force},
+        {"element_sizes", plan.sizes},
+        {"mesh_cpu_seconds", thread_cpu_seconds() - cpu0}};
+    io::write_atomically(report, j.dump(1) + "\n");
+    return {.note = label + " surface"};
+  } catch (const std::exception& e) {
+    return {.failed = true, .note = label + " FAILED", .payload = e.what()};
+  }
+}
+
 // Phase 2, meshes: every particle at every resolution, over every rank's threads.
 Meshes mesh_particles(const StudyDef& def, const fs::path& out,
                       const std::vector<std::size_t>& particles,
@@ -597,6 +750,10 @@ Meshes mesh_particles(const StudyDef& def, const fs::path& out,
   for (std::size_t i : particles) {
     for (long n : def.resolutions) {
       if (polyhedra || n == def.reference) m.tasks.push_back({i, n});
+    }
+    if (def.reference_kind == ReferenceKind::source) {
+      for (int patch = 1; patch <= (def.source_reference.patch_check ? 2 : 1); ++patch)
+        m.tasks.push_back({i, 0, patch});
     }
   }
   const int n = static_cast<int>(m.tasks.size());
@@ -611,7 +768,8 @@ Meshes mesh_particles(const StudyDef& def, const fs::path& out,
       world, n, order, jobs,
       [&](int k) {
         const MeshTask& t = m.tasks[static_cast<std::size_t>(k)];
-        return make_mesh(def, out, t, sources[t.particle]);
+        return t.source_patch > 0 ? make_source_mesh(def, out, t, sources[t.particle])
+                                  : make_mesh(def, out, t, sources[t.particle]);
       },
       [&](const cluster::TaskReport& r, int running) { progress.done(r, 1, running); });
   for (const cluster::TaskReport& r : reports) {
@@ -632,7 +790,22 @@ std::map<std::string, ParticlePlan> plan_particles(const StudyDef& def, const fs
     const MeshTask& t = meshes.tasks[k];
     ParticlePlan& pp = plans[def.particles[t.particle].name];
     if (!meshes.errors[k].empty()) {
-      pp.mesh_error = std::to_string(t.faces) + " triangles: " + meshes.errors[k];
+      // The source reference's surface failing fails its cases alone.
+      (t.source_patch > 0 ? pp.source_error : pp.mesh_error) =
+          (t.source_patch > 0 ? std::string("the source reference's surface")
+                              : std::to_string(t.faces) + " triangles") +
+          ": " + meshes.errors[k];
+      continue;
+    }
+    if (t.source_patch > 0) {
+      const io::Json j = io::read_json_file(
+          source_mesh_dir(out, def.particles[t.particle].name, t.source_patch) / "mesh.json");
+      ParticlePlan::Source& src = pp.source[t.source_patch];
+      const io::Json& f = j.at("strike_point");
+      src.strike_point = Vec3(f[0].get<double>(), f[1].get<double>(), f[2].get<double>());
+      src.centroid_height = j.at("centroid_height").get<double>();
+      src.radius = j.at("equivalent_radius").get<double>();
+      src.sizes = j.at("element_sizes").get<std::vector<double>>();
       continue;
     }
     const io::Json j =
@@ -665,7 +838,9 @@ std::map<std::string, ParticlePlan> plan_particles(const StudyDef& def, const fs
     pp.contact_time = hertz_contact_time(pp.radius, pp.mass, e_star, def.speed);
     double max_gap = 0;
     for (const CaseKey& c : cases) {
-      if (c.particle == name) max_gap = std::max(max_gap, start_height(def, pp, c).second);
+      if (c.particle != name || (c.source_patch > 0 && !pp.source.contains(c.source_patch)))
+        continue;
+      max_gap = std::max(max_gap, start_height(def, pp, c).second);
     }
     pp.duration = def.duration ? *def.duration : max_gap / def.speed + 1.5 * pp.contact_time;
   }
@@ -681,13 +856,16 @@ cluster::TaskReport run_case(const StudyDef& def, const fs::path& out, const Par
   try {
     fs::create_directories(dir);
     if (!pp.mesh_error.empty()) throw std::runtime_error("meshing failed at " + pp.mesh_error);
+    if (c.source_patch > 0 && !pp.source_error.empty())
+      throw std::runtime_error("meshing failed at " + pp.source_error);
     if (c.model == ModelKind::sphere_local && !(pp.local_radius > 0)) {
       throw std::runtime_error(
           "the reference mesh is flat or concave at its lowest vertex: no "
           "local sphere");
     }
-    const std::string scene_text =
-        scene::scene_json(case_scene(def, out, pp, c), dir).dump(1) + "\n";
+    const scene::SceneDef scene_def =
+        c.source_patch > 0 ? source_case_scene(def, out, pp, c) : case_scene(def, out, pp, c);
+    const std::string scene_text = scene::scene_json(scene_def, dir).dump(1) + "\n";
     if (fs::exists(dir / "case.json") && read_text(dir / "scene.json") == scene_text) {
       return {.skipped = true, .note = label + " (done before)"};
     }
@@ -706,14 +884,22 @@ cluster::TaskReport run_case(const StudyDef& def, const fs::path& out, const Par
     thin_rows(result, def.rows);
     run::write_outputs(result, dir);
     // The study's own facts of the case (its CPU on this thread, where the run's cpu_seconds counts
-    // the time loop only; the element size at the strike point, m, null for the coarse default).
+    // the time loop only; the element size at the strike point, m, null for the coarse default:
+    // the refinement's over the reference mesh's R, or the source reference's level over the
+    // source's own R).
+    double h = c.relative_size * pp.radius, h_rel = c.relative_size;
+    if (c.source_patch > 0) {
+      const ParticlePlan::Source& src = pp.source.at(c.source_patch);
+      h = src.sizes.at(static_cast<std::size_t>(c.level - 1));
+      h_rel = h / src.radius;
+    }
     OJson record = {
         {"particle", c.particle},
         {"model", model_name(c.model)},
-        {"resolution", is_sphere(c.model) ? OJson() : OJson(c.resolution)},
+        {"resolution", is_sphere(c.model) || c.source_patch > 0 ? OJson() : OJson(c.resolution)},
         {"placement", placement_name(c.placement)},
-        {"element_size", c.level > 0 ? OJson(c.relative_size * pp.radius) : OJson()},
-        {"element_size_rel", c.level > 0 ? OJson(c.relative_size) : OJson()},
+        {"element_size", c.level > 0 ? OJson(h) : OJson()},
+        {"element_size_rel", c.level > 0 ? OJson(h_rel) : OJson()},
         {"status", result.status},
         {"start_gap", start_height(def, pp, c).second},
         {"duration", pp.duration},
@@ -721,6 +907,7 @@ cluster::TaskReport run_case(const StudyDef& def, const fs::path& out, const Par
         {"local_radii",
          c.model == ModelKind::sphere_local ? OJson{pp.local_r1, pp.local_r2} : OJson()},
         {"cpu_seconds", cpu}};
+    if (c.source_patch > 0) record["source_patch"] = c.source_patch;  // 1 the patch, 2 doubled
     io::write_atomically(dir / "case.json", record.dump(1) + "\n");
     char buf[64];
     std::snprintf(buf, sizeof buf, " %.2f s", cpu);
@@ -792,9 +979,11 @@ StudyOutcome run_study(const StudyDef& def, const fs::path& out, const StudyRunO
   const Meshes meshes =
       mesh_particles(def, out, particles, sources, jobs, world, options.quiet, outcome);
   std::vector<CaseKey> cases;
-  for (const CaseKey& c : plan_cases(def)) {
-    for (std::size_t i : particles) {
-      if (def.particles[i].name == c.particle) cases.push_back(c);
+  for (const auto& plan : {plan_cases(def), plan_source_cases(def)}) {
+    for (const CaseKey& c : plan) {
+      for (std::size_t i : particles) {
+        if (def.particles[i].name == c.particle) cases.push_back(c);
+      }
     }
   }
   const std::map<std::string, ParticlePlan> plans = plan_particles(def, out, meshes, cases);

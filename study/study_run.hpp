@@ -82,18 +82,31 @@ struct CaseKey {
   // fem only: 0 the coarse default (the surface triangles are the elements' faces), k ≥ 1 the
   // k-th size of the study's refinement sequence.
   int level = 0;
-  double relative_size = 0;      // that size over the equivalent radius (0 at level 0)
-  std::string dir_name() const;  // MODEL-N-PLACEMENT, fem-N-hSIZE-PLACEMENT or sphere-PLACEMENT
+  double relative_size = 0;  // that size over the equivalent radius (0 at level 0)
+  // The source reference's cases ("reference": "source"; model fem, resolution 0): 1 its levels
+  // on the contact patch, 2 on the doubled patch (the patch check); `level` 1 to
+  // SourceReferenceOptions::levels, coarsest first. 0: a case of the study's own models.
+  int source_patch = 0;
+  // MODEL-N-PLACEMENT, fem-N-hSIZE-PLACEMENT, sphere-PLACEMENT, or source-LK-PLACEMENT
+  // (source-patch2-LK-PLACEMENT on the doubled patch)
+  std::string dir_name() const;
 };
 
-// Every case of the study, in a fixed order (particle, model, resolution, placement, level).
+// Every case of the study's models, in a fixed order (particle, model, resolution, placement,
+// level).
 std::vector<CaseKey> plan_cases(const StudyDef& def);
+
+// The source reference's cases (none unless "reference" is "source"): per particle and
+// placement, its levels on the patch, then on the doubled patch when "reference_patch_check".
+// Their meshes are DIR/meshes/P/source/ (and source-patch2/): the contact-local surface
+// (surface.off) and the plan (mesh.json: strike point, Hertz contact radius, element sizes).
+std::vector<CaseKey> plan_source_cases(const StudyDef& def);
 
 // The folder of a case's files: OUT/cases/PARTICLE/CASE.
 std::filesystem::path case_dir(const std::filesystem::path& out, const CaseKey& key);
 
-// The cases of OUT that neither finished (case.json) nor failed (failed.json): those of a shard
-// that has not run, was cancelled or ran out of time.
+// The cases of OUT (plan_cases and plan_source_cases) that neither finished (case.json) nor
+// failed (failed.json): those of a shard that has not run, was cancelled or ran out of time.
 int unfinished_cases(const StudyDef& def, const std::filesystem::path& out);
 
 // Runs every case of the shard not already done, on every rank of `options.world` with

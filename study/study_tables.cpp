@@ -22,8 +22,9 @@ StudyTables write_tables(const StudyDef& def, const fs::path& dir, const StudyOu
   const std::vector<tables::CandidateStats> stats = tables::candidate_stats(cases);
   tables::write_candidates_table(stats, dir);
   tables::write_answer_tables(cases, stats, dir);
-  StudyTables out{
-      .cases = static_cast<int>(cases.cases.size()), .done = cases.done, .failed = cases.failed};
+  StudyTables out{.cases = static_cast<int>(cases.cases.size() + cases.source_cases.size()),
+                  .done = cases.done,
+                  .failed = cases.failed};
   out.guidelines = tables::write_guidelines(cases, stats, dir);
   out.summary = tables::write_study_summary(cases, fits, published, run, dir);
   return out;

@@ -11,7 +11,7 @@ namespace asperity::study::tables {
 std::vector<CandidateStats> candidate_stats(const StudyCases& s) {
   const StudyDef& def = s.def;
   std::vector<CandidateStats> out;
-  if (!s.has_fem_reference()) return out;
+  if (!s.has_reference()) return out;
   for (Placement pl : def.placements) {
     for (ModelKind m : def.models) {
       const std::vector<long> resolutions = is_sphere(m) ? std::vector<long>{0} : def.resolutions;

@@ -20,7 +20,7 @@ std::vector<Classification> classify_resolutions(const StudyCases& s) {
         // resolution, whatever the model; each model's coarse case at every resolution.
         const StudyCases::Reference* r = s.reference(p.name, pl);
         if (!r) continue;
-        const CaseData* ref = &s.cases[r->index];
+        const CaseData* ref = &s.reference_case(*r);
         const Curve rc = read_force(ref->dir / "force.csv");
         const double d_ref = ref->summary["contact_duration"].get<double>();
         const CurveShape rs = curve_shape(rc.t, rc.f);

@@ -57,7 +57,9 @@ OJson write_guidelines(const StudyCases& s, const std::vector<CandidateStats>& s
           }
           if (!best) continue;
           const double e = error(*best);
-          const bool is_ref = best->model == ModelKind::fem && best->resolution == def.reference &&
+          // With the source reference no study case is the one the limit comes from.
+          const bool is_ref = def.reference_kind == ReferenceKind::finest &&
+                              best->model == ModelKind::fem && best->resolution == def.reference &&
                               best->level == (def.refinement.applies(def.reference, pl) ? top : 0);
           const OJson res = resolution_or_null(best->model, best->resolution);
           const OJson h = best->level > 0 ? OJson(best->relative_size) : OJson();
@@ -93,8 +95,11 @@ OJson write_guidelines(const StudyCases& s, const std::vector<CandidateStats>& s
       rows);
   OJson guidelines = {
       {"study", def.name},
+      // The reference the errors are against ("finest" or "source"); model, resolution and size:
+      // the study's finest fem, what recommend falls back to when no row meets a tolerance.
       {"reference",
-       {{"model", "fem"},
+       {{"kind", reference_name(def.reference_kind)},
+        {"model", "fem"},
         {"resolution", def.reference},
         {"element_size_rel", top > 0 ? OJson(def.refinement.sizes.back()) : OJson()},
         {"convergence_tolerance", def.refinement.tolerance}}},

@@ -1,5 +1,5 @@
-// references.csv: each particle's reference and the two terms of its uncertainty
-// (docs/study.md, "The reference").
+// references.csv: each particle's reference and the terms of its uncertainty (docs/study.md,
+// "The reference" and "The source reference").
 #include "study/tables/tables.hpp"
 
 namespace asperity::study::tables {
@@ -10,10 +10,11 @@ void write_references_table(const StudyCases& s, const std::filesystem::path& di
     for (const ParticleSource& p : s.def.particles) {
       const StudyCases::Reference* r = s.reference(p.name, pl);
       if (!r) continue;
+      const bool source = r->kind == ReferenceKind::source;
       std::vector<OJson> row = {
           p.name,
           placement_name(pl),
-          r->resolution,
+          source ? OJson() : OJson(r->resolution),
           r->levels,
           finite_or_null(r->values.peak),
           finite_or_null(r->values.impulse),
@@ -27,6 +28,18 @@ void write_references_table(const StudyCases& s, const std::filesystem::path& di
         row.push_back(r->geometry_resolution > 0 ? finite_or_null(r->geometry.metric(k)) : OJson());
         row.push_back(finite_or_null(r->uncertainty.metric(k)));
       }
+      // The source reference's own columns (empty for "finest"): per metric the extrapolation's
+      // order and whether observed, the order of the levels' changes (tables::Extrapolation::
+      // changes_order: beside an assumed order, how far from asymptotic the levels are), and the
+      // patch check's change (empty where not run).
+      row.push_back(reference_name(r->kind));
+      for (std::size_t k = 0; k + 1 < kMetricCount; ++k) {
+        const Extrapolation& e = r->source_limit[k];
+        row.push_back(source ? finite_or_null(e.order) : OJson());
+        row.push_back(source && std::isfinite(e.order) ? OJson(e.observed) : OJson());
+        row.push_back(source ? finite_or_null(e.changes_order) : OJson());
+        row.push_back(source && r->patch_checked ? finite_or_null(r->patch.metric(k)) : OJson());
+      }
       rows.push_back(std::move(row));
     }
   }
@@ -35,6 +48,12 @@ void write_references_table(const StudyCases& s, const std::filesystem::path& di
       "impulse",  "contact_duration", "peak_force_order", "order_observed", "geometry_from"};
   for (std::size_t k = 0; k + 1 < kMetricCount; ++k) {
     for (const char* term : {"_discretization", "_geometry", "_uncertainty"})
+      header.push_back(std::string(kMetrics[k]) + term);
+  }
+  header.push_back("reference");
+  for (std::size_t k = 0; k + 1 < kMetricCount; ++k) {
+    for (const char* term :
+         {"_source_order", "_source_order_observed", "_changes_order", "_patch_change"})
       header.push_back(std::string(kMetrics[k]) + term);
   }
   write_csv(dir / "references.csv", header, rows);

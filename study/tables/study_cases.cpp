@@ -4,11 +4,13 @@
 #include <algorithm>
 #include <cmath>
 #include <fstream>
+#include <optional>
 #include <sstream>
 
 #include "solver/io/atomic_file.hpp"
 #include "solver/io/csv.hpp"
 #include "solver/io/json_file.hpp"
+#include "study/source_reference.hpp"
 
 namespace asperity::study::tables {
 namespace fs = std::filesystem;
@@ -82,15 +84,81 @@ void extrapolate(Sequence& q, const std::vector<const CaseData*>& seq) {
   q.extrapolated = true;
 }
 
+// Per metric √(a² + b²), a term that is not finite counting 0.
+FemErrors quadrature(const FemErrors& a, const FemErrors& b) {
+  const auto hyp = [](double x, double y) {
+    return std::hypot(std::isfinite(x) ? x : 0.0, std::isfinite(y) ? y : 0.0);
+  };
+  return {hyp(a.peak, b.peak), hyp(a.impulse, b.impulse), hyp(a.duration, b.duration),
+          hyp(a.arrival, b.arrival)};
+}
+
+// The source reference of a particle and placement (StudyCases::Reference, "source"): every level
+// on the patch usable, else none; the doubled patch's levels when they all are.
+std::optional<StudyCases::Reference> source_reference_of(const StudyCases& s,
+                                                         const std::string& particle,
+                                                         Placement pl) {
+  std::vector<SourceLevel> near, wide;  // the levels on the patch, on the doubled patch
+  std::vector<double> sizes;
+  std::vector<const CaseData*> patch;
+  bool wide_complete = true;
+  for (const CaseData& c : s.source_cases) {
+    if (c.key.particle != particle || c.key.placement != pl) continue;
+    if (!StudyCases::usable(&c)) {
+      if (c.key.source_patch == 1) return std::nullopt;
+      wide_complete = false;
+      continue;
+    }
+    const Measures m = measures_of(c);
+    const SourceLevel l{.peak_force = m.peak, .impulse = m.impulse, .contact_duration = m.duration};
+    if (c.key.source_patch == 1) {
+      near.push_back(l);
+      patch.push_back(&c);
+      sizes.push_back(c.record.value("element_size_rel", std::nan("")));
+    } else {
+      wide.push_back(l);
+    }
+  }
+  const int levels = SourceReferenceOptions{}.levels;
+  if (static_cast<int>(patch.size()) != levels) return std::nullopt;
+  const bool doubled = wide_complete && static_cast<int>(wide.size()) == levels;
+  const SourceReference ref =
+      source_reference(sizes, near, doubled ? wide : std::vector<SourceLevel>{});
+  StudyCases::Reference r;
+  r.kind = ReferenceKind::source;
+  r.index = s.index_of_source(*patch.back());
+  r.levels = levels;
+  r.peak = ref.peak_force.limit;
+  r.source_limit[0] = ref.peak_force.limit;
+  r.source_limit[1] = ref.impulse.limit;
+  r.source_limit[2] = ref.contact_duration.limit;
+  r.patch_checked = doubled;
+  const Measures finest = measures_of(*patch.back()),
+                 before = measures_of(*patch[patch.size() - 2]);
+  r.values = {ref.peak_force.limit.limit, ref.impulse.limit.limit, ref.contact_duration.limit.limit,
+              finest.first_contact};
+  r.discretization = {ref.peak_force.limit.error, ref.impulse.limit.error,
+                      ref.contact_duration.limit.error,
+                      std::abs(finest.first_contact - before.first_contact) / r.values.duration};
+  r.patch = {ref.peak_force.patch_change, ref.impulse.patch_change,
+             ref.contact_duration.patch_change};
+  r.uncertainty = quadrature(r.discretization, abs_of(r.patch));
+  return r;
+}
+
 // The refinement sequences (fem), the references, and each case's errors against them.
 void settle(StudyCases& s) {
   const StudyDef& def = s.def;
   s.err_fem.assign(s.cases.size(), {});
   s.discretization_error.assign(s.cases.size(), std::nan(""));
-  if (!s.has_fem_reference()) return;
+  if (!s.has_reference()) return;
   const int levels = static_cast<int>(def.refinement.sizes.size());
   for (const ParticleSource& p : def.particles) {
     for (Placement pl : def.placements) {
+      if (def.reference_kind == ReferenceKind::source) {
+        if (const std::optional<StudyCases::Reference> r = source_reference_of(s, p.name, pl))
+          s.references[std::string(p.name) + "|" + placement_name(pl)] = *r;
+      }
       for (long n : def.resolutions) {
         // The usable levels, coarse first; the answer is the finest.
         std::vector<const CaseData*> seq;
@@ -118,7 +186,7 @@ void settle(StudyCases& s) {
       // The reference: the limit at the finest resolution; the geometry's share of its
       // uncertainty from the next coarser resolution that has a sequence of the same kind.
       const Sequence* ref = s.sequence(p.name, def.reference, pl);
-      if (!ref) continue;
+      if (!ref || def.reference_kind != ReferenceKind::finest) continue;
       StudyCases::Reference r;
       r.index = ref->answer;
       r.resolution = def.reference;
@@ -134,13 +202,7 @@ void settle(StudyCases& s) {
           break;
         }
       }
-      const auto hyp = [](double a, double b) {
-        return std::hypot(std::isfinite(a) ? a : 0.0, std::isfinite(b) ? b : 0.0);
-      };
-      r.uncertainty = {hyp(r.discretization.peak, r.geometry.peak),
-                       hyp(r.discretization.impulse, r.geometry.impulse),
-                       hyp(r.discretization.duration, r.geometry.duration),
-                       hyp(r.discretization.arrival, r.geometry.arrival)};
+      r.uncertainty = quadrature(r.discretization, r.geometry);
       s.references[std::string(p.name) + "|" + placement_name(pl)] = r;
     }
   }
@@ -177,8 +239,10 @@ Extrapolation richardson(const std::vector<double>& sizes, const std::vector<dou
         (ratio(mid) < target ? lo : hi) = mid;
       }
       const double p = 0.5 * (lo + hi);
+      e.changes_order = p;
       if (p >= kObservedOrderMin && p <= kObservedOrderMax) {
-        const double correction = d2 / (std::pow(s2 / s3, p) - 1);
+        e.weight = 1 / (std::pow(s2 / s3, p) - 1);
+        const double correction = e.weight * d2;
         e.limit = v3 + correction;
         e.error = kSafetyObserved * std::abs(correction) / std::abs(e.limit);
         e.order = p;
@@ -194,7 +258,17 @@ Extrapolation richardson(const std::vector<double>& sizes, const std::vector<dou
   e.limit = 0.5 * (lo + hi);
   e.error = e.limit != 0 ? 0.5 * std::abs(lo - hi) / std::abs(e.limit) : std::nan("");
   e.order = 0.5 * (kAssumedOrderLow + kAssumedOrderHigh);
+  e.weight =
+      0.5 * (1 / (std::pow(r, kAssumedOrderLow) - 1) + 1 / (std::pow(r, kAssumedOrderHigh) - 1));
   return e;
+}
+
+double extrapolate_like(const std::vector<double>& values, const Extrapolation& like) {
+  const std::size_t n = values.size();
+  if (n < 2 || !std::isfinite(like.weight)) return std::nan("");
+  const double v3 = values[n - 1], v2 = values[n - 2];
+  if (!std::isfinite(v3) || !std::isfinite(v2)) return std::nan("");
+  return v3 + like.weight * (v3 - v2);
 }
 
 const CaseData* StudyCases::find(const std::string& particle, ModelKind m, long resolution,
@@ -219,26 +293,41 @@ bool StudyCases::has_fem_reference() const {
   return std::find(def.models.begin(), def.models.end(), ModelKind::fem) != def.models.end();
 }
 
+bool StudyCases::has_reference() const {
+  return has_fem_reference() || def.reference_kind == ReferenceKind::source;
+}
+
+namespace {
+
+// One case folder: its status, summary.json and case.json, or failed.json.
+CaseData load_case(const CaseKey& k, const fs::path& dir, StudyCases& s) {
+  CaseData c;
+  c.key = k;
+  c.dir = case_dir(dir, k);
+  if (fs::exists(c.dir / "case.json")) {
+    c.summary = OJson::parse(io::read_json_file(c.dir / "summary.json").dump());
+    c.status = c.summary.value("status", "missing");
+    c.record = OJson::parse(io::read_json_file(c.dir / "case.json").dump());
+    c.cpu = c.record.value("cpu_seconds", std::nan(""));
+    c.start_gap = c.record.value("start_gap", std::nan(""));
+    ++s.done;
+  } else if (fs::exists(c.dir / "failed.json")) {
+    c.status = "failed";
+    c.message = io::read_json_file(c.dir / "failed.json").value("message", "");
+    ++s.failed;
+  } else {
+    c.status = "missing";
+  }
+  return c;
+}
+
+}  // namespace
+
 StudyCases load_study_cases(const StudyDef& def, const fs::path& dir) {
   StudyCases s{.def = def};
+  for (const CaseKey& k : plan_source_cases(def)) s.source_cases.push_back(load_case(k, dir, s));
   for (const CaseKey& k : plan_cases(def)) {
-    CaseData c;
-    c.key = k;
-    c.dir = case_dir(dir, k);
-    if (fs::exists(c.dir / "case.json")) {
-      c.summary = OJson::parse(io::read_json_file(c.dir / "summary.json").dump());
-      c.status = c.summary.value("status", "missing");
-      c.record = OJson::parse(io::read_json_file(c.dir / "case.json").dump());
-      c.cpu = c.record.value("cpu_seconds", std::nan(""));
-      c.start_gap = c.record.value("start_gap", std::nan(""));
-      ++s.done;
-    } else if (fs::exists(c.dir / "failed.json")) {
-      c.status = "failed";
-      c.message = io::read_json_file(c.dir / "failed.json").value("message", "");
-      ++s.failed;
-    } else {
-      c.status = "missing";
-    }
+    CaseData c = load_case(k, dir, s);
     const long faces = is_sphere(k.model) ? def.reference : k.resolution;
     const fs::path mj = dir / "meshes" / k.particle / std::to_string(faces) / "mesh.json";
     if (fs::exists(mj)) c.mesh = OJson::parse(io::read_json_file(mj).dump());

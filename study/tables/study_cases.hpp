@@ -69,11 +69,19 @@ inline constexpr double kSafetyObserved = 1.25;
 // A Richardson extrapolation of one metric along the refined levels (docs/study.md,
 // "The reference"): the limit, its estimated error (relative to the limit), the order used, and
 // whether that order was observed (three levels, monotone, in range) or assumed (the bracket).
+// Either way the limit is the finest value plus `weight` times the last change,
+// limit = v[n−1] + weight (v[n−1] − v[n−2]): weight = 1/((s[n−2]/s[n−1])^p − 1) at an observed
+// order p, the mean of the bracket's two such weights when assumed (extrapolate_like).
 struct Extrapolation {
   double limit = std::nan("");
   double error = std::nan("");  // relative: |estimate − limit| bound / |limit|
   double order = std::nan("");  // observed; or the bracket's middle when assumed
   bool observed = false;
+  double weight = std::nan("");  // of the last change, as above
+  // The order of the last three levels' changes whenever they fall monotonically, in the trusted
+  // range or not (NaN: fewer than three levels, or changes that oscillate or grow): an assumed
+  // order beside an order of changes far below the bracket says the levels are not asymptotic.
+  double changes_order = std::nan("");
 };
 // values[k] at element sizes sizes[k] (descending, at least two): with three or more, the
 // observed order of the last three when they change monotonically at an order within
@@ -81,6 +89,12 @@ struct Extrapolation {
 // correction as the error; otherwise the two finest levels extrapolated at both ends of the
 // assumed bracket, the limit their mean and the error half their spread.
 Extrapolation richardson(const std::vector<double>& sizes, const std::vector<double>& values);
+// The limit of another sequence `values` at the same sizes extrapolated with `like`'s order and
+// weight (not its own): values[n−1] + like.weight (values[n−1] − values[n−2]); NaN when `like`
+// has no weight or `values` has fewer than two finite levels. A sequence that differs from the
+// one `like` came from by a constant offset gets a limit that differs by exactly that offset,
+// whatever its own changes would say (the source reference's patch check, source_reference.hpp).
+double extrapolate_like(const std::vector<double>& values, const Extrapolation& like);
 
 // The fem refinement sequence of one (particle, resolution, placement): its answer (the finest
 // usable level; the coarse case when the study refines none), whether the last refinement moved
@@ -107,21 +121,35 @@ struct StudyCases {
   // sequence (the discretization error); NaN for other models.
   std::vector<double> discretization_error;
   std::map<std::string, Sequence> sequences;  // particle|resolution|placement, fem only
-  // The reference of each particle|placement: the limit of the fem sequence at the finest
-  // resolution (its Richardson extrapolation; `index` the finest case, whose curve the
-  // classification compares), and its uncertainty per metric, √(discretization² + geometry²):
-  // the extrapolation's estimated error, and the change of the limit from the next coarser
-  // resolution that was refined (is the finest geometry fine enough?).
+  // The reference of each particle|placement, by the study's "reference":
+  // - finest: the limit of the fem sequence at the finest resolution (its Richardson
+  //   extrapolation; `index` the finest case of `cases`, whose curve the classification
+  //   compares), and its uncertainty per metric, √(discretization² + geometry²): the
+  //   extrapolation's estimated error, and the change of the limit from the next coarser
+  //   resolution that was refined (is the finest geometry fine enough?).
+  // - source: the particle itself (study/source_reference.hpp), the Richardson limit of the
+  //   source reference's levels on the patch (`index` the finest of `source_cases`), and its
+  //   uncertainty per metric, √(discretization² + patch²): the extrapolation's estimated error and
+  //   the patch check's change (when run). No geometry term: the geometry is the particle's.
+  //   The first contact is the finest level's (the free flight's), its last change the error.
   struct Reference {
+    ReferenceKind kind = ReferenceKind::finest;
     std::size_t index = 0;
-    long resolution = 0;           // the finest resolution's N
+    long resolution = 0;           // the finest resolution's N (0: the source)
     long geometry_resolution = 0;  // the coarser N the geometry term compares with (0: none)
     int levels = 0;                // usable levels of its sequence, the coarse one included
     Extrapolation peak;            // the peak force's extrapolation (order, observed)
+    // The source: per metric (kMetrics but the first contact) its extrapolation, and whether the
+    // doubled patch ran.
+    Extrapolation source_limit[3];
+    bool patch_checked = false;
     Measures values;
     FemErrors discretization, geometry, uncertainty;
+    FemErrors patch;  // the source: the patch check's change per metric (signed; NaN: not run)
   };
   std::map<std::string, Reference> references;
+  // The source reference's cases (plan_source_cases order): empty for "finest".
+  std::vector<CaseData> source_cases;
   int done = 0, failed = 0;
 
   // The case, or nullptr when the study has none such.
@@ -129,12 +157,21 @@ struct StudyCases {
                        int level = 0) const;
   const Sequence* sequence(const std::string& particle, long resolution, Placement pl) const;
   const Reference* reference(const std::string& particle, Placement pl) const;
+  // The case whose force curve is the reference's (the finest level).
+  const CaseData& reference_case(const Reference& r) const {
+    return r.kind == ReferenceKind::source ? source_cases[r.index] : cases[r.index];
+  }
   std::size_t index_of(const CaseData& c) const {
     return static_cast<std::size_t>(&c - cases.data());
+  }
+  std::size_t index_of_source(const CaseData& c) const {
+    return static_cast<std::size_t>(&c - source_cases.data());
   }
   // A run that ended normally ("ok"): its measures can be compared.
   static bool usable(const CaseData* c) { return c && c->status == "ok"; }
   bool has_fem_reference() const;
+  // Whether the study has a reference at all: the fem model ("finest") or the source.
+  bool has_reference() const;
 
   std::map<std::string, std::size_t> index;  // particle|model|resolution|placement → case
 };

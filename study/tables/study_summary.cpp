@@ -31,6 +31,13 @@ std::pair<double, std::map<std::string, double>> cpu_totals(const StudyCases& s)
       by_model["meshing"] += c.mesh.value("mesh_cpu_seconds", 0.0);
     }
   }
+  // The source reference's levels (and their contact-local surfaces) as a model of their own.
+  for (const CaseData& c : s.source_cases) {
+    if (std::isfinite(c.cpu)) {
+      total += c.cpu;
+      by_model["source-reference"] += c.cpu;
+    }
+  }
   return {total, by_model};
 }
 
@@ -109,7 +116,7 @@ OJson write_study_summary(const StudyCases& s, const std::vector<CpuFit>& fits,
       {"resolutions", def.resolutions},
       {"models", OJson::array()},
       {"placements", OJson::array()},
-      {"cases", static_cast<int>(s.cases.size())},
+      {"cases", static_cast<int>(s.cases.size() + s.source_cases.size())},
       {"done", s.done},
       {"failed", s.failed},
       {"cpu_seconds_total", cpu_total},

@@ -42,9 +42,11 @@ void write_particle_classes_table(const std::vector<Classification>& rows,
                                   const std::filesystem::path& dir);
 
 // references.csv: per particle and placement, the reference (the limit of the fem sequence at the
-// finest resolution), the order its peak force was extrapolated at (observed or assumed) and,
-// per metric, the two terms of its uncertainty and their quadrature sum (docs/study.md, "The
-// reference"): which dominates, discretization or geometry.
+// finest resolution, or of the source reference's levels), the order its peak force was
+// extrapolated at (observed or assumed) and, per metric, the terms of its uncertainty and their
+// quadrature sum (docs/study.md, "The reference"): which dominates, discretization or geometry;
+// for the source reference per metric also the order and the patch check's change (the geometry
+// term empty: the geometry is the particle's).
 void write_references_table(const StudyCases& s, const std::filesystem::path& dir);
 
 // The geometry term (docs/study.md, "The geometry term"): for a study refining two or more

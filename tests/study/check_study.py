@@ -84,6 +84,16 @@ with open(bad, "w") as f:
 r = run("study", bad, "--out", os.path.join(work, "bad"))
 check("max_contact_factor below 1 exits 2 naming it",
       r.returncode == 2 and r.stderr.count("\n") == 1 and "max_contact_factor" in r.stderr, (r.returncode, r.stderr))
+# "reference": "source" or "finest" (issue 28)
+j["refinement"].pop("max_contact_factor")
+j["reference"] = "particle"
+with open(bad, "w") as f:
+    json.dump(j, f)
+r = run("study", bad, "--out", os.path.join(work, "bad"))
+check("a reference other than source or finest exits 2 naming it",
+      r.returncode == 2 and r.stderr.count("\n") == 1 and "reference" in r.stderr and "source" in r.stderr,
+      (r.returncode, r.stderr))
+check("nothing written for a bad reference", not os.path.exists(os.path.join(work, "bad")))
 
 # 4. The report: files, tables, charts, numbers equal to the cases' summary.json.
 r = run("report", study, "--out", report)

@@ -20,6 +20,7 @@
 #include <iostream>
 #include <numbers>
 #include <string>
+#include <vector>
 
 #include <gtest/gtest.h>
 
@@ -119,6 +120,80 @@ TEST(SphereStudy, RefinedFemPeakMatchesTheFiniteSphereAndHertz) {
   // Against plain Hertz (half-spaces): 2 % plus the finite-sphere correction, which is the
   // physics a half-space law leaves out, not a solver error.
   EXPECT_LT(std::abs(vs_hertz), 0.02 + finite_correction);
+  fs::remove_all(work);
+}
+
+// The source reference end to end (issue 28, "reference": "source"): the same sphere as its own
+// source surface, its contact-local surface refined at the strike point in three levels by
+// run_study, and the reference the tables take from them (tables::StudyCases::Reference): its
+// peak force must converge (changes falling monotonically at an observed order) towards the
+// finite-sphere reference, the limit within the convergence gate's 2 % of it.
+//
+// Measured (5 December 2026, 2 threads on the 2-core machine at a load of 8-15) with the finest
+// level at a/1.25 (h = 0.158, 0.079, 0.040 R): peak 6155, 5838, 5789 N, observed order 2.69,
+// limit 5780 N ± 0.19 %: +2.58 % from the finite sphere (5635 N), +4.87 % from Hertz; failed the
+// 2 %. The study's own refined sphere (the test above) falls from 5764 N at 0.04 R to 5734 N at
+// 0.02 R, an order of about 1.2: levels as coarse as 0.16 R are not asymptotic, and their order
+// says so only with a finer level. Hence the source reference's a/3 here (301 s of CPU at a/1.25).
+// At a/3 (h = 0.0659, 0.0329, 0.0165 R; same machine, load 14): peak 5893, 5745, 5726 N, observed
+// order 2.95, limit 5722.9 N ± 0.06 %: +1.57 % from the finite sphere, +3.84 % from Hertz (the
+// finite-sphere correction +2.23 %), within 0.05 % of the refined sphere's limit above (5720 N);
+// passed; 364 s of CPU (64 + 114 + 187 s), 21.5 min of wall.
+TEST(SphereStudy, SourceReferenceConvergesTowardsTheFiniteSphere) {
+  const fs::path work = fs::temp_directory_path() / "asperity_sphere_source_study";
+  fs::remove_all(work);
+  fs::create_directories(work);
+  const SurfaceMesh surface = sphere_surface();
+  geometry::write_surface_mesh(work / "sphere_source.off", surface);
+  fs::copy_file(fs::path(ASPERITY_SOURCE_DIR) / "tests/study/sphere_source_study.json",
+                work / "sphere_source_study.json");
+  const StudyDef def = load_study(work / "sphere_source_study.json");
+  ASSERT_EQ(def.reference_kind, ReferenceKind::source);
+
+  StudyRunOptions run{.jobs = 2, .quiet = true};
+  const StudyOutcome outcome = run_study(def, work / "out", run);
+  ASSERT_EQ(outcome.failed, 0);
+  const tables::StudyCases cases = tables::load_study_cases(def, work / "out");
+  const tables::StudyCases::Reference* r = cases.reference("sphere", Placement::lowest);
+  ASSERT_NE(r, nullptr);
+  ASSERT_EQ(r->kind, ReferenceKind::source);
+
+  const double mass = def.material.density * geometry::mass_properties(surface).volume;
+  const reference::FiniteSphereImpact ref = reference::finite_sphere_impact_with_mass(
+      def.material.young, def.material.poisson, mass, kRadius, def.speed);
+  const double finite_correction = ref.peak_force / ref.hertz_peak_force - 1;
+  std::cout << "source reference levels (h/R, peak N, CPU s):";
+  double cpu = 0;
+  std::vector<double> peaks;
+  for (const tables::CaseData& c : cases.source_cases) {
+    std::cout << " " << c.record["element_size_rel"].get<double>() << " "
+              << c.summary["peak_force"].get<double>() << " " << c.cpu << ";";
+    peaks.push_back(c.summary["peak_force"].get<double>());
+    cpu += c.cpu;
+  }
+  const double limit = r->values.peak;
+  std::cout << " limit " << limit << " N ± " << 100 * r->discretization.peak << " %, order "
+            << r->peak.order << (r->peak.observed ? " (observed)" : " (assumed)")
+            << "; vs finite sphere " << 100 * (limit / ref.peak_force - 1) << " %, vs Hertz "
+            << 100 * (limit / ref.hertz_peak_force - 1) << " %; source reference CPU " << cpu
+            << " s\n";
+  ASSERT_EQ(peaks.size(), 3u);
+  // Converging: each level closer to the finite sphere than the one before, at an observed order
+  // in [1, 4] (graded refinement of a Hertz contact converges at 1.2-2.7 in peak force,
+  // reports/fem/hertz_convergence.md; outside [1, 4] the levels are not asymptotic).
+  EXPECT_LT(std::abs(peaks[1] - ref.peak_force), std::abs(peaks[0] - ref.peak_force));
+  EXPECT_LT(std::abs(peaks[2] - ref.peak_force), std::abs(peaks[1] - ref.peak_force));
+  EXPECT_TRUE(r->peak.observed);
+  EXPECT_GE(r->peak.order, 1.0);
+  EXPECT_LE(r->peak.order, 4.0);
+  // 2 %: the convergence issue's gate tolerance, against the finite sphere (as the test above).
+  EXPECT_LT(std::abs(limit / ref.peak_force - 1), 0.02);
+  EXPECT_LT(std::abs(limit / ref.hertz_peak_force - 1), 0.02 + finite_correction);
+  // The Hertz sphere, the study's one candidate, is measured against that reference.
+  const tables::CaseData* sphere = cases.find("sphere", ModelKind::sphere, 0, Placement::lowest);
+  ASSERT_NE(sphere, nullptr);
+  EXPECT_NEAR(cases.err_fem[cases.index_of(*sphere)].peak,
+              sphere->summary["peak_force"].get<double>() / limit - 1, 1e-12);
   fs::remove_all(work);
 }
 

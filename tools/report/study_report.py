@@ -809,6 +809,34 @@ def axes_section(doc, study, cases):
                "converged (< 1 %)"], per)
 
 
+def source_reference_section(doc, references):
+    """The source reference ("reference": "source" in study.json; references.csv's source columns): the particle
+    itself, its source surface refined at the strike point in three levels, and the terms of its uncertainty."""
+    doc.p("Per particle: the reference is the particle itself (\"reference\": \"source\"): its source surface kept "
+          "around the strike point, refined there in three levels, and their Richardson limit, with the order and "
+          "whether it was observed; its uncertainty adds in quadrature the extrapolation's estimated error "
+          "(discretization) and, where the doubled patch ran, the patch check's change ('-' where not run). An "
+          "assumed order is followed by the levels' own order where they fall monotonically outside the range the "
+          "extrapolation trusts (0.5-5): those levels are not asymptotic. Every error of this report is against it: "
+          "there is no geometry term.")
+    rows = []
+    for r in references:
+        order, changes = r["peak_force_source_order"], r.get("peak_force_changes_order", "")
+        said = "-"
+        if order:
+            observed = r["peak_force_source_order_observed"] == "true"
+            said = ("observed " if observed else "assumed ") + fmt(order, 3)
+            if not observed and changes:  # the levels' own order, outside the trusted range
+                said += f" (levels: {fmt(changes, 2)})"
+        rows.append([r["particle"], r["placement"], fmt(r["peak_force"]), said,
+                     pct(r["peak_force_discretization"]),
+                     pct(r["peak_force_patch_change"]) if r["peak_force_patch_change"] else "-",
+                     pct(r["peak_force_uncertainty"]), pct(r["contact_duration_uncertainty"]),
+                     pct(r["impulse_uncertainty"])])
+    doc.table(["particle", "placement", "peak force (N)", "order (peak)", "discretization", "patch check",
+               "uncertainty (peak)", "uncertainty (duration)", "uncertainty (impulse)"], rows)
+
+
 def references_section(doc, references, growth, contact_factor=0):
     """The reference of each particle and the two terms of its uncertainty (references.csv); `growth` the refined
     levels' far-field grading (study.json), whose bias the uncertainty does not include; `contact_factor` their
@@ -816,6 +844,9 @@ def references_section(doc, references, growth, contact_factor=0):
     if not references:
         return
     doc.h(2, "The reference and its uncertainty")
+    if any(r.get("reference") == "source" for r in references):
+        source_reference_section(doc, references)
+        return
     doc.p("Per particle: the reference (the limit of the fem sequence at the finest resolution), the order its peak "
           "force was extrapolated at (observed from three refined levels, or the assumed bracket's middle), and the "
           "two terms of its uncertainty, added in quadrature: discretization (the extrapolation's estimated error) "

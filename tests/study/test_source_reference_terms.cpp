@@ -1,0 +1,108 @@
+// The source reference's terms (study/source_reference.hpp): the Richardson limit of the levels
+// on the patch, the patch check's change (the doubled patch's levels extrapolated with the
+// patch's order and weight) and the uncertainty, on synthetic level sequences whose order, limit
+// and offset are known, so every number asserted is exact to round-off.
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <vector>
+
+#include "study/source_reference.hpp"
+#include "study/tables/study_cases.hpp"
+
+namespace asperity::study::source_reference_terms_tests {
+namespace {
+
+// The plan's three levels h, h/2, h/4 (over R): a/3 at a/R = 0.065, the measured median.
+const std::vector<double> kSizes = {0.0867, 0.04333, 0.02167};
+
+// A level sequence converging as L + c h^p in every metric (the impulse and the duration scaled,
+// so the three metrics are not one number).
+std::vector<SourceLevel> levels(double limit, double c, double p) {
+  std::vector<SourceLevel> v;
+  for (double h : kSizes) {
+    const double x = limit + c * std::pow(h, p);
+    v.push_back({.peak_force = x, .impulse = 1e-3 * x, .contact_duration = 1e-6 * x});
+  }
+  return v;
+}
+
+// Round-off bound of the relative changes below: the limits are sums of a few terms of size
+// about 1000 (N), each exact to 1e-16 relative; 1e-12 leaves a thousand times that.
+constexpr double kRoundOff = 1e-12;
+
+TEST(SourceReferenceTerms, ConstantOffsetOfTheDoubledPatchIsTheChangeExactly) {
+  // The doubled patch's levels the patch's plus a constant 0.7 % of the limit: whatever the
+  // weights, a weighted extrapolation whose weights sum to 1 moves by exactly that offset.
+  const double limit = 1000, p = 1.6;
+  const std::vector<SourceLevel> patch = levels(limit, 4000, p);
+  std::vector<SourceLevel> doubled = patch;
+  for (SourceLevel& l : doubled) {
+    l.peak_force += 7.0;
+    l.impulse += 7e-3;
+    l.contact_duration += 7e-6;
+  }
+  const SourceReference r = source_reference(kSizes, patch, doubled);
+  for (const SourceMetric* m : {&r.peak_force, &r.impulse, &r.contact_duration}) {
+    EXPECT_TRUE(m->limit.observed);
+    EXPECT_NEAR(m->limit.order, p, 1e-9);  // the bisection's 2^-100 of its bracket
+    EXPECT_NEAR(m->patch_change, 0.007, kRoundOff);
+    // The uncertainty: the extrapolation's estimated error and the patch term in quadrature.
+    EXPECT_NEAR(m->uncertainty, std::hypot(m->limit.error, 0.007), kRoundOff);
+  }
+  EXPECT_NEAR(r.peak_force.limit.limit, limit, 1e-9);
+}
+
+TEST(SourceReferenceTerms, AlternatingLevelDifferencesAreWeightedAtThePatchOrder) {
+  // The doubled patch's levels differ from the patch's by an offset c plus ±e alternating from
+  // level to level (what gen7321 showed: ±0.2–0.7 %). At the patch's order p the last change is
+  // weighted w = 1/(2^p − 1), so the doubled limit is the patch's + c + e (1 + 2w) (the finest
+  // level's +e, the change's 2e times w); its own sequence would be extrapolated otherwise.
+  const double limit = 1000, p = 2.0, c = 5.0, e = 4.0;
+  const std::vector<SourceLevel> patch = levels(limit, 4000, p);
+  std::vector<SourceLevel> doubled = patch;
+  const double signs[] = {+1, -1, +1};
+  for (std::size_t k = 0; k < doubled.size(); ++k) doubled[k].peak_force += c + signs[k] * e;
+  const SourceReference r = source_reference(kSizes, patch, doubled);
+  const double w = 1 / (std::pow(kSizes[1] / kSizes[2], p) - 1);
+  ASSERT_TRUE(r.peak_force.limit.observed);
+  EXPECT_NEAR(r.peak_force.limit.weight, w, 1e-9);
+  EXPECT_NEAR(r.peak_force.patch_change, (c + e * (1 + 2 * w)) / limit, 1e-11);
+  // The doubled levels alone (1039.1, 1008.5, 1010.9 N at these numbers) oscillate: their own
+  // extrapolation falls back to the assumed bracket, another weight, another change.
+  std::vector<double> own;
+  for (const SourceLevel& l : doubled) own.push_back(l.peak_force);
+  const tables::Extrapolation alone = tables::richardson(kSizes, own);
+  EXPECT_FALSE(alone.observed);
+  EXPECT_GT(std::abs(alone.limit / r.peak_force.limit.limit - 1 - r.peak_force.patch_change), 1e-4);
+  // The other metrics had no offset: no change.
+  EXPECT_NEAR(r.impulse.patch_change, 0, kRoundOff);
+}
+
+TEST(SourceReferenceTerms, AssumedOrderCarriesTheBracketWeightToTheDoubledPatch) {
+  // Patch levels that overshoot (no observed order): the limit is the bracket's (orders 1.2 and
+  // 2.7, tables::richardson), weight the mean of 1/(2^1.2 − 1) and 1/(2^2.7 − 1); the doubled
+  // levels, offset by 3 and with a finest level 2 higher, take that weight.
+  std::vector<SourceLevel> patch = {
+      {.peak_force = 1100}, {.peak_force = 990}, {.peak_force = 1000}};
+  std::vector<SourceLevel> doubled = {
+      {.peak_force = 1103}, {.peak_force = 993}, {.peak_force = 1005}};
+  const SourceReference r = source_reference(kSizes, patch, doubled);
+  const double r2 = kSizes[1] / kSizes[2];
+  const double w = 0.5 * (1 / (std::pow(r2, 1.2) - 1) + 1 / (std::pow(r2, 2.7) - 1));
+  EXPECT_FALSE(r.peak_force.limit.observed);
+  const double patch_limit = 1000 + w * 10, doubled_limit = 1005 + w * 12;
+  EXPECT_NEAR(r.peak_force.limit.limit, patch_limit, 1e-9);
+  EXPECT_NEAR(r.peak_force.patch_change, doubled_limit / patch_limit - 1, kRoundOff);
+}
+
+TEST(SourceReferenceTerms, WithoutTheDoubledPatchTheUncertaintyIsTheExtrapolationsError) {
+  const SourceReference r = source_reference(kSizes, levels(1000, 4000, 1.3), {});
+  EXPECT_TRUE(std::isnan(r.peak_force.patch_change));
+  EXPECT_DOUBLE_EQ(r.peak_force.uncertainty, r.peak_force.limit.error);
+  // Roache's 1.25 times the last correction c h3^p over the limit (tables::richardson).
+  EXPECT_NEAR(r.peak_force.uncertainty, 1.25 * 4000 * std::pow(kSizes[2], 1.3) / 1000, 1e-9);
+}
+
+}  // namespace
+}  // namespace asperity::study::source_reference_terms_tests
