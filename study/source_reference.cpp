@@ -1,6 +1,7 @@
 // The source reference's plan (issue 28): strike point, Hertz contact radius, element sizes.
 #include "study/source_reference.hpp"
 
+#include <algorithm>
 #include <cmath>
 
 #include "solver/contact/hertz_impact.hpp"
@@ -42,14 +43,26 @@ SourceMetric metric(const std::vector<double>& sizes, const std::vector<SourceLe
     return v;
   };
   SourceMetric m;
-  m.limit = tables::richardson(sizes, values(patch));
-  m.uncertainty = m.limit.error;
+  const std::vector<double> v = values(patch);
+  m.limit = tables::richardson(sizes, v);
+  m.discretization = m.limit.error;
+  const std::size_t n = v.size();
+  const double p = m.limit.changes_order;
+  if (!m.limit.observed && std::isfinite(p) && p < tables::kObservedOrderMin && n >= 2 &&
+      std::isfinite(m.limit.limit) && m.limit.limit != 0) {
+    // Converging too slowly for the bracket (the header): the limit at the levels' own order.
+    const double own =
+        v[n - 1] + (v[n - 1] - v[n - 2]) / (std::pow(sizes[n - 2] / sizes[n - 1], p) - 1);
+    m.discretization =
+        std::max(m.discretization, std::abs(own - m.limit.limit) / std::abs(m.limit.limit));
+  }
+  m.uncertainty = m.discretization;
   if (!doubled.empty()) {
     // The doubled patch's levels at the patch's order and weight: the two differ level by level
     // by ±0.2–0.7 % with alternating sign (gen7321), so the doubled sequence's own order, often
     // another or an oscillation, would extrapolate that noise instead of the patch's effect.
     m.patch_change = tables::extrapolate_like(values(doubled), m.limit) / m.limit.limit - 1;
-    m.uncertainty = std::hypot(m.limit.error, m.patch_change);
+    m.uncertainty = std::hypot(m.discretization, m.patch_change);
   }
   return m;
 }

@@ -137,8 +137,8 @@ std::optional<StudyCases::Reference> source_reference_of(const StudyCases& s,
                  before = measures_of(*patch[patch.size() - 2]);
   r.values = {ref.peak_force.limit.limit, ref.impulse.limit.limit, ref.contact_duration.limit.limit,
               finest.first_contact};
-  r.discretization = {ref.peak_force.limit.error, ref.impulse.limit.error,
-                      ref.contact_duration.limit.error,
+  r.discretization = {ref.peak_force.discretization, ref.impulse.discretization,
+                      ref.contact_duration.discretization,
                       std::abs(finest.first_contact - before.first_contact) / r.values.duration};
   r.patch = {ref.peak_force.patch_change, ref.impulse.patch_change,
              ref.contact_duration.patch_change};

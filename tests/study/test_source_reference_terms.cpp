@@ -104,5 +104,25 @@ TEST(SourceReferenceTerms, WithoutTheDoubledPatchTheUncertaintyIsTheExtrapolatio
   EXPECT_NEAR(r.peak_force.uncertainty, 1.25 * 4000 * std::pow(kSizes[2], 1.3) / 1000, 1e-9);
 }
 
+TEST(SourceReferenceTerms, ASlowlyConvergingReferenceCarriesItsDistanceToTheLimit) {
+  // Levels L + c h^0.24, ballast_01's measured order in peak force (changes −217, −183 N):
+  // below the 0.5 richardson trusts, so its limit is the assumed bracket's (orders 1.2–2.7),
+  // short of L by several times the bracket's own spread. The reference's discretization term
+  // must cover the true distance |L − limit| / limit, which the levels' own order recovers
+  // exactly on an exact power law (to the order's bisection, 1e-28, and round-off).
+  const double limit = 14675, c = 2400, p = 0.24;
+  const SourceReference r = source_reference(kSizes, levels(limit, c, p), {});
+  const SourceMetric& m = r.peak_force;
+  ASSERT_FALSE(m.limit.observed);
+  EXPECT_NEAR(m.limit.changes_order, p, 1e-9);
+  const double truth = std::abs(limit - m.limit.limit) / m.limit.limit;
+  EXPECT_GT(truth, 2 * m.limit.error);  // the bracket's spread alone would understate it
+  EXPECT_NEAR(m.discretization, truth, kRoundOff);
+  EXPECT_DOUBLE_EQ(m.uncertainty, m.discretization);  // no patch check run
+  // A sequence at an observed order keeps richardson's error unchanged.
+  const SourceReference q = source_reference(kSizes, levels(1000, 4000, 1.3), {});
+  EXPECT_DOUBLE_EQ(q.peak_force.discretization, q.peak_force.limit.error);
+}
+
 }  // namespace
 }  // namespace asperity::study::source_reference_terms_tests
