@@ -215,6 +215,7 @@ SceneDef parse_scene(const io::Json& json, const std::filesystem::path& file,
   s.allow_unsafe_dt = r.boolean_or("allow_unsafe_dt", false);
   if (r.has("unstable_energy_growth"))
     s.unstable_energy_growth = r.positive("unstable_energy_growth");
+  s.allow_initial_overlap = r.boolean_or("allow_initial_overlap", false);
 
   const JsonReader mats = r.child("materials");
   mats.require_object();
@@ -298,6 +299,19 @@ SceneDef parse_scene(const io::Json& json, const std::filesystem::path& file,
                             "only deformable bodies (model \"fem\") take an elastic law, "
                             "and no fem body uses material \"" +
                                 name + "\"");
+    }
+  }
+
+  // A starting overlap is allowed to spheres alone: mesh bodies keep their check
+  // (run/run_fdem.cpp), where the penalty contact has no pressed state to start from. A key that
+  // does nothing is refused.
+  if (s.allow_initial_overlap) {
+    for (std::size_t i = 0; i < s.bodies.size(); ++i) {
+      if (std::holds_alternative<MeshShape>(s.bodies[i].shape)) {
+        r.fail("allow_initial_overlap",
+               "sphere scenes only (spheres, planes and boxes), and bodies[" + std::to_string(i) +
+                   "] \"" + s.bodies[i].name + "\" is a mesh");
+      }
     }
   }
 
