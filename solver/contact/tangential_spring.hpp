@@ -34,6 +34,11 @@ inline Vec3 rotate_into_tangent_plane(const Vec3& spring, const Vec3& n) {
   return s;
 }
 
+// Energy stored in a spring force F_s of stiffness k_t: |F_s|²/(2 k_t), J (0 without stiffness).
+inline double spring_energy(const Vec3& spring, double stiffness) {
+  return stiffness > 0 ? spring.squaredNorm() / (2 * stiffness) : 0;
+}
+
 // spring: the previous spring force already rotated into the current tangent plane.
 // slip_velocity: tangential velocity of body 1 relative to body 2 at the contact point, m/s.
 // Incremental law F_s ← F_s − k_t v_t dt. Sticking (|F_s + F_d| ≤ μ F_n) the force is spring plus
@@ -58,7 +63,7 @@ inline TangentialForce tangential_spring(const Vec3& spring, const Vec3& slip_ve
     out.force = trial + fd;
     out.dissipated = -fd.dot(slip_velocity) * dt;
   }
-  out.energy = p.stiffness > 0 ? out.spring.squaredNorm() / (2 * p.stiffness) : 0;
+  out.energy = spring_energy(out.spring, p.stiffness);
   return out;
 }
 
