@@ -43,15 +43,22 @@ inline HertzCoefficients hertz_coefficients(const HertzParams& p) {
 // the tangent stiffness S_n = 3/2 K δ^{1/2}). For this form the restitution depends on ζ only,
 // not on the impact speed, so ζ(e) is computed once (restitution_damping.hpp). LIGGGHTS writes
 // the same force as 2√(5/6) β √(S_n m*) δ̇, i.e. ζ = √5 β.
-inline NormalForce hertz_normal(double overlap, double overlap_rate, const HertzCoefficients& c) {
+// The same with δ^{1/2} and δ^{1/4} given (Hertz–Mindlin takes its tangential stiffness and
+// dashpot from them too, so each root is taken once per contact).
+inline NormalForce hertz_normal(double overlap, double sqrt_overlap, double fourth_root_overlap,
+                                double overlap_rate, const HertzCoefficients& c) {
   NormalForce out;
-  const double sqrt_d = std::sqrt(overlap);
-  out.elastic = c.k * overlap * sqrt_d;
-  out.stiffness = 1.5 * c.k * sqrt_d;
-  out.damping = c.damping * std::sqrt(sqrt_d) * overlap_rate;
+  out.elastic = c.k * overlap * sqrt_overlap;
+  out.stiffness = 1.5 * c.k * sqrt_overlap;
+  out.damping = c.damping * fourth_root_overlap * overlap_rate;
   out.force = std::max(0.0, out.elastic + out.damping);
   out.energy = 0.4 * out.elastic * overlap;
   return out;
+}
+
+inline NormalForce hertz_normal(double overlap, double overlap_rate, const HertzCoefficients& c) {
+  const double sqrt_d = std::sqrt(overlap);
+  return hertz_normal(overlap, sqrt_d, std::sqrt(sqrt_d), overlap_rate, c);
 }
 
 inline NormalForce hertz_normal(double overlap, double overlap_rate, const HertzParams& p) {

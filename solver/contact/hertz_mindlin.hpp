@@ -28,12 +28,14 @@ struct HertzMindlinForce {
 };
 
 // What of a Hertz–Mindlin pair does not change while it touches (computed once per pair of bodies).
+// k_t = 8 G* √R* δ^{1/2} and c_t = ζ √(m* k_t / 1.5) = ζ √(8 G* √R* m* / 1.5) δ^{1/4}: the factors
+// before the powers of δ are the pair's, so a contact takes no root beyond δ^{1/2} and δ^{1/4}.
 struct HertzMindlinCoefficients {
   HertzCoefficients normal;  // K, ζ √(m* K)
-  double shear8 = 0;         // 8 G*, Pa: k_t = 8 G* √(R* δ)
+  double shear = 0;          // 8 G* √R*, N/m^{3/2}: k_t = shear · δ^{1/2}
+  double shear_damping = 0;  // ζ √(8 G* √R* m* / 1.5): c_t = shear_damping · δ^{1/4}
   double radius_eff = 0;     // R*, m
   double mass_eff = 0;       // m*, kg
-  double zeta = 0;
   double friction = 0;
 };
 
@@ -42,17 +44,18 @@ inline HertzMindlinCoefficients hertz_mindlin_coefficients(const HertzMindlinPar
                                         .radius_eff = p.radius_eff,
                                         .mass_eff = p.mass_eff,
                                         .zeta = p.zeta}),
-          .shear8 = 8.0 * p.shear_eff,
+          .shear = 8.0 * p.shear_eff * std::sqrt(p.radius_eff),
+          .shear_damping =
+              p.zeta * std::sqrt(8.0 * p.shear_eff * std::sqrt(p.radius_eff) * p.mass_eff / 1.5),
           .radius_eff = p.radius_eff,
           .mass_eff = p.mass_eff,
-          .zeta = p.zeta,
           .friction = p.friction};
 }
 
 // Mindlin's no-slip tangent stiffness k_t = 8 G* a, a = √(R* δ), N/m (also what the stored
 // spring energy |F_s|²/(2 k_t) is measured with).
 inline double mindlin_stiffness(const HertzMindlinCoefficients& c, double overlap) {
-  return c.shear8 * std::sqrt(c.radius_eff * overlap);
+  return c.shear * std::sqrt(overlap);
 }
 
 // overlap δ > 0 (m); overlap_rate δ̇ (m/s, approaching > 0); slip_velocity: tangential velocity
@@ -64,9 +67,10 @@ inline HertzMindlinForce hertz_mindlin(double overlap, double overlap_rate,
                                        const Vec3& slip_velocity, const Vec3& spring, double dt,
                                        const HertzMindlinCoefficients& c) {
   HertzMindlinForce out;
-  out.normal = hertz_normal(overlap, overlap_rate, c.normal);
-  const double kt = mindlin_stiffness(c, overlap);
-  const double ct = c.zeta * std::sqrt(c.mass_eff * kt / 1.5);
+  const double sqrt_d = std::sqrt(overlap), fourth_d = std::sqrt(sqrt_d);
+  out.normal = hertz_normal(overlap, sqrt_d, fourth_d, overlap_rate, c.normal);
+  const double kt = c.shear * sqrt_d;
+  const double ct = c.shear_damping * fourth_d;
   out.tangential = tangential_spring(spring, slip_velocity, dt, out.normal.force,
                                      {.stiffness = kt, .damping = ct, .friction = c.friction});
   return out;

@@ -203,7 +203,7 @@ void pair_forces(SphereWorld& w, double dt) {
         continue;
       }
       const PairLaw& law = w.pair_law[k];
-      const Vec3 n = d / dist;
+      const Vec3 n = d * (1.0 / dist);  // one quotient, not three
       w.max_overlap_ratio = std::max(w.max_overlap_ratio, overlap * law.inv_min_radius);
       const Vec3 arm1 = -(ri - 0.5 * overlap) * n;
       const Vec3 arm2 = (w.radius[j] - 0.5 * overlap) * n;
