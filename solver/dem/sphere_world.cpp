@@ -3,6 +3,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 
 #include "solver/contact/hertz.hpp"
 #include "solver/contact/hertz_mindlin.hpp"
@@ -50,9 +51,9 @@ ContactOutcome outcome(const contact::NormalForce& fn, const contact::Tangential
 // Hertz (mindlin false) or Hertz–Mindlin force on body 1 of one touching contact, from the pair's
 // coefficients (contact/hertz_mindlin.hpp, a pure function), its geometry and history.
 template <bool mindlin>
-ContactOutcome hertz_contact(const contact::HertzMindlinCoefficients& c, const Vec3& n,
-                             double overlap, const Vec3& v_rel, double rate_end, Vec3& spring,
-                             double& viscous, double dt) {
+[[gnu::always_inline]] inline ContactOutcome hertz_contact(
+    const contact::HertzMindlinCoefficients& c, const Vec3& n, double overlap, const Vec3& v_rel,
+    double rate_end, Vec3& spring, double& viscous, double dt) {
   const double rate = -v_rel.dot(n);
   contact::NormalForce fn;
   contact::TangentialForce ft;
@@ -153,25 +154,6 @@ void rebuild_pairs(SphereWorld& world) {
   ++world.rebuilds;
 }
 
-bool needs_rebuild(const SphereWorld& world) {
-  if (world.x_at_build.cols() != world.x.cols()) return true;
-  const double limit = 0.25 * world.skin * world.skin;
-  for (int i = 0; i < world.size(); ++i) {
-    if ((world.x.col(i) - world.x_at_build.col(i)).squaredNorm() > limit) return true;
-  }
-  return false;
-}
-
-// Dashpots see the velocity at the end of the step, predicted with last step's acceleration
-// (v_{n+1} ≈ v_{n+½} + ½ dt a_n): a second-order estimate where the half-step velocity alone
-// lags by ½ dt a and biases damped peaks and restitution at coarse steps.
-void predict_end_velocity(SphereWorld& w, double dt) {
-  w.v_end = w.v;
-  for (int i = 0; i < w.size(); ++i) {
-    if (!w.fixed[i]) w.v_end.col(i) += 0.5 * dt * (w.force.col(i) / w.mass[i] + w.gravity);
-  }
-}
-
 enum class PairLawKind { hertz_mindlin, hertz, linear };
 
 // Sphere–sphere contacts of the candidate pairs. The list is sorted by i: sphere i's force,
@@ -198,8 +180,11 @@ void pair_forces(SphereWorld& w, double dt) {
       if (overlap <= 0 || dist == 0) {
         si = std::max(si, overlap);
         touch[bj] = std::max(touch[bj], overlap);
-        p.spring.setZero();
-        p.viscous = 0;
+        // Cleared only where it holds something: a candidate that stays apart costs no store.
+        if (p.viscous != 0 || p.spring != Vec3::Zero()) {
+          p.spring.setZero();
+          p.viscous = 0;
+        }
         continue;
       }
       const PairLaw& law = w.pair_law[k];
@@ -307,10 +292,31 @@ void wall_forces(SphereWorld& w, double dt) {
   }
 }
 
+// The first half kick and the drift, and in the same sweep over the spheres what the force pass
+// needs: the end-of-step velocity the dashpots see, predicted with last step's acceleration
+// (v_{n+1} ≈ v_{n+½} + ½ dt a_n: a second-order estimate where the half-step velocity alone lags
+// by ½ dt a and biases damped peaks and restitution at coarse steps), and the force totals
+// cleared. Returns the largest squared displacement since the neighbour list was built.
+double kick_drift(SphereWorld& w, double dt) {
+  const bool listed = w.x_at_build.cols() == w.x.cols();
+  double moved = listed ? 0.0 : std::numeric_limits<double>::infinity();
+  for (int i = 0; i < w.size(); ++i) {
+    if (!w.fixed[i]) {
+      const Vec3 a = w.force.col(i) * w.inv_mass[i] + w.gravity;
+      w.v.col(i) += 0.5 * dt * a;
+      w.w.col(i) += 0.5 * dt * w.torque.col(i) * w.inv_inertia[i];
+      w.x.col(i) += dt * w.v.col(i);
+      w.v_end.col(i) = w.v.col(i) + 0.5 * dt * a;
+      if (listed) moved = std::max(moved, (w.x.col(i) - w.x_at_build.col(i)).squaredNorm());
+    }
+    w.force.col(i).setZero();
+    w.torque.col(i).setZero();
+  }
+  return moved;
+}
+
+// Contact forces at the current positions into the (cleared) force totals, and the contact output.
 void compute_forces(SphereWorld& w, double dt) {
-  predict_end_velocity(w, dt);
-  w.force.setZero();
-  w.torque.setZero();
   w.contacts.reset(w.contacts.size());
   switch (w.law.normal == contact::NormalLaw::linear
               ? PairLawKind::linear
@@ -396,6 +402,13 @@ void initialise(SphereWorld& world) {
     bodies = std::max(bodies, wall.body + 1);
   }
   world.contacts.reset(bodies);
+  world.inv_mass.resize(n);
+  world.inv_inertia.resize(n);
+  for (int i = 0; i < n; ++i) {
+    world.inv_mass[i] = 1.0 / world.mass[i];
+    world.inv_inertia[i] = 1.0 / world.inertia[i];
+  }
+  world.v_end = world.v;
   rebuild_pairs(world);
   compute_forces(world, 0.0);
 }
@@ -403,21 +416,17 @@ void initialise(SphereWorld& world) {
 void step(SphereWorld& world, double dt) {
   const int n = world.size();
   const std::uint64_t t0 = ticks();
-  for (int i = 0; i < n; ++i) {
-    if (world.fixed[i]) continue;
-    world.v.col(i) += 0.5 * dt * (world.force.col(i) / world.mass[i] + world.gravity);
-    world.w.col(i) += 0.5 * dt * world.torque.col(i) / world.inertia[i];
-    world.x.col(i) += dt * world.v.col(i);
-  }
+  const double moved = kick_drift(world, dt);
   const std::uint64_t t1 = ticks();
-  if (needs_rebuild(world)) rebuild_pairs(world);
+  // Verlet list: rebuilt once a sphere moved more than half the skin since it was built.
+  if (moved > 0.25 * world.skin * world.skin) rebuild_pairs(world);
   const std::uint64_t t2 = ticks();
   compute_forces(world, dt);
   const std::uint64_t t3 = ticks();
   for (int i = 0; i < n; ++i) {
     if (world.fixed[i]) continue;
-    world.v.col(i) += 0.5 * dt * (world.force.col(i) / world.mass[i] + world.gravity);
-    world.w.col(i) += 0.5 * dt * world.torque.col(i) / world.inertia[i];
+    world.v.col(i) += 0.5 * dt * (world.force.col(i) * world.inv_mass[i] + world.gravity);
+    world.w.col(i) += 0.5 * dt * world.torque.col(i) * world.inv_inertia[i];
   }
   const std::uint64_t t4 = ticks();
   world.profile.integrate += (t1 - t0) + (t4 - t3);
@@ -448,10 +457,11 @@ std::size_t state_bytes(const SphereWorld& world) {
   return doubles(world.x) + doubles(world.v) + doubles(world.w) + doubles(world.force) +
          doubles(world.torque) + doubles(world.v_end) + doubles(world.x_at_build) +
          doubles(world.x_initial) + held(world.radius) + held(world.mass) + held(world.inertia) +
-         held(world.material) + held(world.body) + held(world.fixed) + held(world.materials) +
-         held(world.pair) + held(world.walls) + held(world.pairs) + held(world.pair_law) +
-         held(world.wall_contacts) + doubles(world.contacts.force) +
-         doubles(world.contacts.normal_force) + held(world.contacts.overlap);
+         held(world.inv_mass) + held(world.inv_inertia) + held(world.material) + held(world.body) +
+         held(world.fixed) + held(world.materials) + held(world.pair) + held(world.walls) +
+         held(world.pairs) + held(world.pair_law) + held(world.wall_contacts) +
+         doubles(world.contacts.force) + doubles(world.contacts.normal_force) +
+         held(world.contacts.overlap);
 }
 
 }  // namespace asperity::dem

@@ -75,6 +75,7 @@ struct SphereWorld {
   Eigen::Matrix3Xd force, torque;             // this step's totals, without gravity
   Eigen::Matrix3Xd v_end;                     // predicted end-of-step velocity the dashpots use
   std::vector<double> radius, mass, inertia;  // m, kg, kg·m² (2/5 m r²)
+  std::vector<double> inv_mass, inv_inertia;  // 1/kg, 1/(kg·m²): set by initialise
   std::vector<int> material, body;            // material index, scene body index
   std::vector<std::uint8_t> fixed;
 
