@@ -175,11 +175,17 @@ void pair_forces(SphereWorld& w, double dt) {
       PairContact& p = w.pairs[k];
       const int j = p.j, bj = w.body[j];
       const Vec3 d = xi - w.x.col(j);
-      const double dist = d.norm();
-      const double overlap = ri + w.radius[j] - dist;
-      if (overlap <= 0 || dist == 0) {
-        si = std::max(si, overlap);
-        touch[bj] = std::max(touch[bj], overlap);
+      const double reach = ri + w.radius[j], d2 = d.squaredNorm();
+      const double dist = d2 < reach * reach ? std::sqrt(d2) : 0.0;  // apart: no root yet
+      const double overlap = reach - dist;
+      if (dist == 0 || overlap <= 0) {
+        // Apart. Its gap is output only where it would raise a body's largest overlap (the gap
+        // reach − |d| exceeds s where |d|² < (reach − s)²): the root is taken for those alone.
+        if (const double s = std::min(si, touch[bj]); dist > 0 || d2 < (reach - s) * (reach - s)) {
+          const double gap = dist > 0 ? overlap : reach - std::sqrt(d2);
+          si = std::max(si, gap);
+          touch[bj] = std::max(touch[bj], gap);
+        }
         // Cleared only where it holds something: a candidate that stays apart costs no store.
         if (p.viscous != 0 || p.spring != Vec3::Zero()) {
           p.spring.setZero();
@@ -255,17 +261,24 @@ double wall_overlap(const Wall& wall, const Vec3& x, double r, Vec3& normal) {
 void wall_forces(SphereWorld& w, double dt) {
   const int nm = static_cast<int>(w.materials.size());
   const int n = w.size();
+  std::vector<double>& touch = w.contacts.overlap;
   for (std::size_t k = 0; k < w.walls.size(); ++k) {
     const Wall& wall = w.walls[k];
+    // The wall's contact output, summed in registers over the spheres and stored once.
+    Vec3 wf = w.contacts.force.col(wall.body), wfn = w.contacts.normal_force.col(wall.body);
+    double ws = touch[wall.body];
     for (int i = 0; i < n; ++i) {
       if (w.fixed[i]) continue;
       WallContact& h = w.wall_contacts[k * n + i];
       Vec3 normal;
       const double overlap = wall_overlap(wall, w.x.col(i), w.radius[i], normal);
       if (overlap <= 0) {
-        w.contacts.gap(w.body[i], wall.body, overlap);
-        h.spring.setZero();
-        h.viscous = 0;
+        touch[w.body[i]] = std::max(touch[w.body[i]], overlap);
+        ws = std::max(ws, overlap);
+        if (h.viscous != 0 || h.spring != Vec3::Zero()) {
+          h.spring.setZero();
+          h.viscous = 0;
+        }
         continue;
       }
       w.max_overlap_ratio = std::max(w.max_overlap_ratio, overlap / w.radius[i]);
@@ -284,11 +297,15 @@ void wall_forces(SphereWorld& w, double dt) {
       w.dissipated += c.dissipated;
       ++w.contact_updates;
       // The sphere's contact force output is its force total (compute_forces); the wall's here.
-      w.contacts.force.col(wall.body) -= c.force;
+      wf -= c.force;
       w.contacts.normal_force.col(w.body[i]) += c.normal_force;
-      w.contacts.normal_force.col(wall.body) -= c.normal_force;
-      w.contacts.gap(w.body[i], wall.body, overlap);
+      wfn -= c.normal_force;
+      touch[w.body[i]] = std::max(touch[w.body[i]], overlap);
+      ws = std::max(ws, overlap);
     }
+    w.contacts.force.col(wall.body) = wf;
+    w.contacts.normal_force.col(wall.body) = wfn;
+    touch[wall.body] = ws;
   }
 }
 
