@@ -4,6 +4,8 @@
 #include <algorithm>
 #include <cmath>
 #include <limits>
+#include <map>
+#include <tuple>
 
 #include "solver/contact/hertz.hpp"
 #include "solver/contact/hertz_mindlin.hpp"
@@ -147,9 +149,22 @@ void rebuild_pairs(SphereWorld& world) {
       p.viscous = it->viscous;
     }
   }
-  world.pair_law.clear();
-  world.pair_law.reserve(world.pairs.size());
-  for (const PairContact& p : world.pairs) world.pair_law.push_back(pair_law(world, p.i, p.j));
+  // One entry per distinct (materials, radii, masses as the law sees them), in order of first use.
+  using Key = std::tuple<int, int, double, double, double, double>;
+  std::map<Key, int> index;
+  world.laws.clear();
+  for (PairContact& p : world.pairs) {
+    const int i = p.i, j = p.j;
+    const Key key{world.material[i],
+                  world.material[j],
+                  world.radius[i],
+                  world.radius[j],
+                  world.fixed[i] ? 0.0 : world.mass[i],
+                  world.fixed[j] ? 0.0 : world.mass[j]};
+    const auto [at, added] = index.try_emplace(key, static_cast<int>(world.laws.size()));
+    if (added) world.laws.push_back(pair_law(world, i, j));
+    p.law = at->second;
+  }
   world.x_at_build = world.x;
   ++world.rebuilds;
 }
@@ -193,7 +208,7 @@ void pair_forces(SphereWorld& w, double dt) {
         }
         continue;
       }
-      const PairLaw& law = w.pair_law[k];
+      const PairLaw& law = w.laws[p.law];
       const Vec3 n = d * (1.0 / dist);  // one quotient, not three
       w.max_overlap_ratio = std::max(w.max_overlap_ratio, overlap * law.inv_min_radius);
       const Vec3 arm1 = -(ri - 0.5 * overlap) * n;
@@ -364,7 +379,7 @@ double contact_energy(const SphereWorld& w) {
     const double dist = (w.x.col(p.i) - w.x.col(p.j)).norm();
     const double overlap = w.radius[p.i] + w.radius[p.j] - dist;
     if (overlap <= 0 || dist == 0) continue;
-    e += stored_energy(w, w.pair_law[k].hertz, w.pair[w.material[p.i] * nm + w.material[p.j]],
+    e += stored_energy(w, w.laws[p.law].hertz, w.pair[w.material[p.i] * nm + w.material[p.j]],
                        overlap, p.spring);
   }
   const int n = w.size();
@@ -476,7 +491,7 @@ std::size_t state_bytes(const SphereWorld& world) {
          doubles(world.x_initial) + held(world.radius) + held(world.mass) + held(world.inertia) +
          held(world.inv_mass) + held(world.inv_inertia) + held(world.material) + held(world.body) +
          held(world.fixed) + held(world.materials) + held(world.pair) + held(world.walls) +
-         held(world.pairs) + held(world.pair_law) + held(world.wall_contacts) +
+         held(world.pairs) + held(world.laws) + held(world.wall_contacts) +
          doubles(world.contacts.force) + doubles(world.contacts.normal_force) +
          held(world.contacts.overlap);
 }

@@ -41,14 +41,17 @@ struct LawDef {
 // One sphere–sphere pair of the neighbour list, with its tangential history (zero while apart).
 struct PairContact {
   int i = 0, j = 0;  // i < j
+  int law = 0;       // its constants: SphereWorld::laws[law]
   Vec3 spring = Vec3::Zero();
   double viscous = 0;  // last non-elastic normal force (dashpot, clipping), N
 };
 
-// The constants of one candidate pair, set when the neighbour list is built (parallel to
-// `pairs`): the Hertz(–Mindlin) coefficients of its material pair and two radii, so that the force
-// loop takes no square root or quotient that is the same every step (the linear law has its own
-// few and takes them from the material pair).
+// The constants of a candidate pair, set when the neighbour list is built: the Hertz(–Mindlin)
+// coefficients of its material pair, two radii and masses, so that the force loop takes no square
+// root or quotient that is the same every step (the linear law has its own few and takes them from
+// the material pair). Pairs that share all of these share one entry (a packing of one size and
+// material has one): 64 bytes per kind of pair instead of per pair, which the loop reads every
+// step.
 struct PairLaw {
   contact::HertzMindlinCoefficients hertz;
   double inv_min_radius = 0;  // 1 / the smaller radius, 1/m (the pass-through check)
@@ -88,7 +91,7 @@ struct SphereWorld {
   // Broad phase: Verlet neighbour list, rebuilt when a sphere moved more than skin/2.
   double skin = 0;
   std::vector<PairContact> pairs;
-  std::vector<PairLaw> pair_law;  // hertz and hertz-mindlin
+  std::vector<PairLaw> laws;  // the distinct constants of the candidate pairs (PairContact::law)
   Eigen::Matrix3Xd x_at_build;
   long rebuilds = 0;
   std::vector<WallContact> wall_contacts;
