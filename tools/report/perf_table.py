@@ -19,7 +19,7 @@ each run, one after the other, so that a change of the machine's load hits every
 
 Every figure is the median over the pairs with its spread (min–max); a peer's ratio to asperity is
 taken within each pair (same crosscheck invocation) and its median and spread reported. Writes
-OUT/perf.md, OUT/perf.csv and OUT/bench/*.json, with the CPU model (/proc/cpuinfo) and the load
+OUT/perf.md, OUT/perf.csv and OUT/bench/*.json (the scenes and the runs into BUILD/perf-runs/), with the CPU model (/proc/cpuinfo) and the load
 average before and after. Exit 1 when a code failed or could not express a scene (listed, not left
 out), 2 on bad arguments.
 
@@ -112,7 +112,7 @@ def spread(vals):
     return statistics.median(vals), min(vals), max(vals)
 
 
-def run_pair(k, a, s, scenes, peers, out, baseline, smoke):
+def run_pair(k, a, s, scenes, peers, out, work, baseline, smoke):
     bdir = out / "bench"
     bdir.mkdir(parents=True, exist_ok=True)
     if baseline:
@@ -131,7 +131,7 @@ def run_pair(k, a, s, scenes, peers, out, baseline, smoke):
         s.error("bench_dem", str(e))
     for scene in scenes:
         name = scene.stem
-        d = out / "runs" / name / f"r{k}"
+        d = work / name / f"r{k}"
         builds = [("after", a)] + ([("before", baseline)] if baseline and not name.startswith("pressed") else [])
         for build, b in builds:
             cpu, p = process([str(b / "bin" / "asperity"), "run", str(scene), "--out", str(d / f"run-{build}"),
@@ -201,6 +201,7 @@ def write_tables(s, out, meta, figure_names):
     rows = []
     for key, title, unit in FIGURES:
         key = key.replace("pressed-10k", figure_names["pressed"]).replace("bed-10k", figure_names["bed"])
+        title = title.replace("pressed-10k", figure_names["pressed"]).replace("bed-10k", figure_names["bed"])
         for (fig, code, build), vals in sorted(s.values.items()):
             if fig != key:
                 continue
@@ -276,14 +277,16 @@ def main(argv):
                 print(f"perf_table.py: {b / 'bin' / exe}: not built", file=sys.stderr)
                 return 2
     side = (4, 4, 4) if smoke else (bed_scene.NX, bed_scene.NY, bed_scene.NZ)
-    sdir = out / "runs" / "scenes"
+    # The scenes and the runs' outputs (megabytes) go beside the build, not into OUT.
+    work = build / ("perf-smoke-runs" if smoke else "perf-runs")
+    sdir = work / "scenes"
     scenes = [bed_scene.write_one(sdir, bed_scene.pressed(pressed_steps, *side)),
               bed_scene.write_one(sdir, bed_scene.bed(bed_steps, *side))]
     names = {"pressed": scenes[0].stem, "bed": scenes[1].stem}
     load_before = " ".join(f"{x:.1f}" for x in os.getloadavg())
     s = Samples()
     for k in range(1, pairs + 1):
-        run_pair(k, build, s, scenes, peers, out, baseline, smoke)
+        run_pair(k, build, s, scenes, peers, out, work, baseline, smoke)
     meta = {"command": " ".join(argv), "cpu": cpu_model(), "pairs": pairs, "baseline": str(baseline or ""),
             "load_before": load_before, "load_after": " ".join(f"{x:.1f}" for x in os.getloadavg())}
     write_tables(s, out, meta, names)
