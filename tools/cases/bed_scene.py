@@ -16,8 +16,8 @@ bed's height sizes it), the usual fraction of the critical step for a dense bed.
 - pair: two spheres head-on at 0.1 m/s each (the contact lasts ~50 steps), then flying apart: the
   per-step overhead of each code when there is almost nothing to compute.
 - bed-10k: the lattice of BM_Packing10k, 25 x 20 x 20 spheres on a simple-cubic lattice resting on
-  the plane z = 0 under gravity. The scene loader refuses bodies that start overlapping, so
-  neighbours start 1e-9 r apart (2 pm) instead of pressed into each other: the bottom layer meets
+  the plane z = 0 under gravity, touching: neighbours start 1e-9 r apart (2 pm) instead of pressed
+  into each other (that is pressed-10k, below): the bottom layer meets
   the plane within a few steps and the compaction runs up the columns (asperity: ~2,900 touching
   contacts per step on average over 500 steps), and every lattice neighbour is a candidate pair
   in the neighbour lists (28,600 nearest-neighbour pairs). The run is too short for the columns to buckle, so
