@@ -180,18 +180,6 @@ void pair_forces(SphereWorld& w, double dt) {
   const int nm = static_cast<int>(w.materials.size());
   const std::size_t np = w.pairs.size();
   std::vector<double>& touch = w.contacts.overlap;
-  // The distance and its reciprocal of every touching pair first, in a loop of their own: there
-  // the roots and quotients of many pairs overlap, instead of heading each contact's chain of
-  // dependent roots below (0: apart, or coincident centres).
-  w.pair_distance.resize(np);
-  for (std::size_t k = 0; k < np; ++k) {
-    const PairContact& p = w.pairs[k];
-    const double reach = w.radius[p.i] + w.radius[p.j];
-    const double d2 = (w.x.col(p.i) - w.x.col(p.j)).squaredNorm();
-    const double dist = d2 < reach * reach ? std::sqrt(d2) : 0.0;
-    w.pair_distance[k] =
-        dist > 0 && reach - dist > 0 ? PairDistance{dist, 1.0 / dist} : PairDistance{0.0, 0.0};
-  }
   for (std::size_t k = 0; k < np;) {
     const int i = w.pairs[k].i, bi = w.body[i];
     const Vec3 xi = w.x.col(i), vi = w.v.col(i), wi = w.w.col(i), vei = w.v_end.col(i);
@@ -202,14 +190,14 @@ void pair_forces(SphereWorld& w, double dt) {
       PairContact& p = w.pairs[k];
       const int j = p.j, bj = w.body[j];
       const Vec3 d = xi - w.x.col(j);
-      const double reach = ri + w.radius[j];
-      const auto [dist, inv_dist] = w.pair_distance[k];
-      if (dist == 0) {
+      const double reach = ri + w.radius[j], d2 = d.squaredNorm();
+      const double dist = d2 < reach * reach ? std::sqrt(d2) : 0.0;  // apart: no root yet
+      const double overlap = reach - dist;
+      if (dist == 0 || overlap <= 0) {
         // Apart. Its gap is output only where it would raise a body's largest overlap (the gap
         // reach − |d| exceeds s where |d|² < (reach − s)²): the root is taken for those alone.
-        const double d2 = d.squaredNorm();
-        if (const double s = std::min(si, touch[bj]); d2 < (reach - s) * (reach - s)) {
-          const double gap = reach - std::sqrt(d2);
+        if (const double s = std::min(si, touch[bj]); dist > 0 || d2 < (reach - s) * (reach - s)) {
+          const double gap = dist > 0 ? overlap : reach - std::sqrt(d2);
           si = std::max(si, gap);
           touch[bj] = std::max(touch[bj], gap);
         }
@@ -220,9 +208,8 @@ void pair_forces(SphereWorld& w, double dt) {
         }
         continue;
       }
-      const double overlap = reach - dist;
       const PairLaw& law = w.laws[p.law];
-      const Vec3 n = d * inv_dist;  // one quotient, not three
+      const Vec3 n = d * (1.0 / dist);  // one quotient, not three
       w.max_overlap_ratio = std::max(w.max_overlap_ratio, overlap * law.inv_min_radius);
       const Vec3 arm1 = -(ri - 0.5 * overlap) * n;
       const Vec3 arm2 = (w.radius[j] - 0.5 * overlap) * n;
@@ -504,9 +491,9 @@ std::size_t state_bytes(const SphereWorld& world) {
          doubles(world.x_initial) + held(world.radius) + held(world.mass) + held(world.inertia) +
          held(world.inv_mass) + held(world.inv_inertia) + held(world.material) + held(world.body) +
          held(world.fixed) + held(world.materials) + held(world.pair) + held(world.walls) +
-         held(world.pairs) + held(world.laws) + held(world.pair_distance) +
-         held(world.wall_contacts) + doubles(world.contacts.force) +
-         doubles(world.contacts.normal_force) + held(world.contacts.overlap);
+         held(world.pairs) + held(world.laws) + held(world.wall_contacts) +
+         doubles(world.contacts.force) + doubles(world.contacts.normal_force) +
+         held(world.contacts.overlap);
 }
 
 }  // namespace asperity::dem

@@ -57,11 +57,6 @@ struct PairLaw {
   double inv_min_radius = 0;  // 1 / the smaller radius, 1/m (the pass-through check)
 };
 
-// This step's distance of a touching candidate pair and its reciprocal (both 0: apart).
-struct PairDistance {
-  double dist = 0, inv_dist = 0;  // m, 1/m
-};
-
 // One sphere–wall history slot (index wall * n_spheres + sphere).
 struct WallContact {
   Vec3 spring = Vec3::Zero();
@@ -96,7 +91,6 @@ struct SphereWorld {
   // Broad phase: Verlet neighbour list, rebuilt when a sphere moved more than skin/2.
   double skin = 0;
   std::vector<PairContact> pairs;
-  std::vector<PairDistance> pair_distance;  // per candidate pair, this step's (scratch)
   std::vector<PairLaw> laws;  // the distinct constants of the candidate pairs (PairContact::law)
   Eigen::Matrix3Xd x_at_build;
   long rebuilds = 0;
