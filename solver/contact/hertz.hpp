@@ -26,21 +26,43 @@ inline double hertz_constant(const HertzParams& p) {
   return 4.0 / 3.0 * p.young_eff * std::sqrt(p.radius_eff);
 }
 
+// What of a Hertz pair does not change while it touches: K and the dashpot's ζ √(m* K). A world
+// computes them once per pair of bodies, not per contact and step (dem/sphere_world.cpp).
+struct HertzCoefficients {
+  double k = 0;        // K = 4/3 E* √R*, N/m^{3/2}
+  double damping = 0;  // ζ √(m* K), N·s/m^{5/4}
+};
+
+inline HertzCoefficients hertz_coefficients(const HertzParams& p) {
+  const double k = hertz_constant(p);
+  return {.k = k, .damping = p.zeta * std::sqrt(p.mass_eff * k)};
+}
+
 // overlap δ > 0 (m); overlap_rate δ̇ (m/s, positive while approaching).
 // Damping F_d = ζ √(m* K) δ^{1/4} δ̇ (Tsuji et al. 1992 form: viscous force ∝ √(m* S_n) with
 // the tangent stiffness S_n = 3/2 K δ^{1/2}). For this form the restitution depends on ζ only,
 // not on the impact speed, so ζ(e) is computed once (restitution_damping.hpp). LIGGGHTS writes
 // the same force as 2√(5/6) β √(S_n m*) δ̇, i.e. ζ = √5 β.
-inline NormalForce hertz_normal(double overlap, double overlap_rate, const HertzParams& p) {
+// The same with δ^{1/2} and δ^{1/4} given (Hertz–Mindlin takes its tangential stiffness and
+// dashpot from them too, so each root is taken once per contact).
+inline NormalForce hertz_normal(double overlap, double sqrt_overlap, double fourth_root_overlap,
+                                double overlap_rate, const HertzCoefficients& c) {
   NormalForce out;
-  const double k = hertz_constant(p);
-  const double sqrt_d = std::sqrt(overlap);
-  out.elastic = k * overlap * sqrt_d;
-  out.stiffness = 1.5 * k * sqrt_d;
-  out.damping = p.zeta * std::sqrt(p.mass_eff * k) * std::sqrt(sqrt_d) * overlap_rate;
+  out.elastic = c.k * overlap * sqrt_overlap;
+  out.stiffness = 1.5 * c.k * sqrt_overlap;
+  out.damping = c.damping * fourth_root_overlap * overlap_rate;
   out.force = std::max(0.0, out.elastic + out.damping);
   out.energy = 0.4 * out.elastic * overlap;
   return out;
+}
+
+inline NormalForce hertz_normal(double overlap, double overlap_rate, const HertzCoefficients& c) {
+  const double sqrt_d = std::sqrt(overlap);
+  return hertz_normal(overlap, sqrt_d, std::sqrt(sqrt_d), overlap_rate, c);
+}
+
+inline NormalForce hertz_normal(double overlap, double overlap_rate, const HertzParams& p) {
+  return hertz_normal(overlap, overlap_rate, hertz_coefficients(p));
 }
 
 }  // namespace asperity::contact

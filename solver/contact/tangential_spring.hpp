@@ -27,11 +27,16 @@ struct TangentialForce {
 // Carries last step's spring force into the current tangent plane (normal n, unit), keeping its
 // magnitude: the contact frame turned, the stored elastic force did not change (the rotation
 // step of Luding 2008, Granular Matter 10:235, §2.2.2, and of YADE's ScGeom::rotate).
+// (One root and one quotient: the factor |F| / |s| as √(|F|² / |s|²).)
 inline Vec3 rotate_into_tangent_plane(const Vec3& spring, const Vec3& n) {
-  const double mag = spring.norm();
   Vec3 s = spring - spring.dot(n) * n;
-  if (const double sn = s.norm(); sn > 0) s *= mag / sn;
+  if (const double ss = s.squaredNorm(); ss > 0) s *= std::sqrt(spring.squaredNorm() / ss);
   return s;
+}
+
+// Energy stored in a spring force F_s of stiffness k_t: |F_s|²/(2 k_t), J (0 without stiffness).
+inline double spring_energy(const Vec3& spring, double stiffness) {
+  return stiffness > 0 ? spring.squaredNorm() / (2 * stiffness) : 0;
 }
 
 // spring: the previous spring force already rotated into the current tangent plane.
@@ -47,8 +52,9 @@ inline TangentialForce tangential_spring(const Vec3& spring, const Vec3& slip_ve
   const Vec3 trial = spring - p.stiffness * dt * slip_velocity;
   const Vec3 fd = -p.damping * slip_velocity;
   const double cap = p.friction * normal_force;
-  const double total = (trial + fd).norm();
-  if (total > cap) {
+  // |F_s + F_d| > μ F_n compared squared (both sides ≥ 0): the root only where it slides.
+  if ((trial + fd).squaredNorm() > cap * cap) {
+    const double total = (trial + fd).norm();
     out.sliding = true;
     out.spring = total > 0 ? Vec3(cap / total * (trial + fd)) : Vec3::Zero();
     out.force = out.spring;
@@ -58,7 +64,7 @@ inline TangentialForce tangential_spring(const Vec3& spring, const Vec3& slip_ve
     out.force = trial + fd;
     out.dissipated = -fd.dot(slip_velocity) * dt;
   }
-  out.energy = p.stiffness > 0 ? out.spring.squaredNorm() / (2 * p.stiffness) : 0;
+  out.energy = spring_energy(out.spring, p.stiffness);
   return out;
 }
 

@@ -8,6 +8,7 @@
 
 #include <Eigen/Core>
 
+#include "solver/contact/hertz_mindlin.hpp"
 #include "solver/contact/restitution_damping.hpp"
 #include "solver/core/body_contacts.hpp"
 #include "solver/core/energy.hpp"
@@ -37,19 +38,29 @@ struct LawDef {
   std::optional<double> restitution;  // overrides the pair's
 };
 
-// One sphere–sphere pair of the neighbour list, with its tangential history.
+// One sphere–sphere pair of the neighbour list, with its tangential history (zero while apart).
 struct PairContact {
   int i = 0, j = 0;  // i < j
+  int law = 0;       // its constants: SphereWorld::laws[law]
   Vec3 spring = Vec3::Zero();
   double viscous = 0;  // last non-elastic normal force (dashpot, clipping), N
-  bool touching = false;
+};
+
+// The constants of a candidate pair, set when the neighbour list is built: the Hertz(–Mindlin)
+// coefficients of its material pair, two radii and masses, so that the force loop takes no square
+// root or quotient that is the same every step (the linear law has its own few and takes them from
+// the material pair). Pairs that share all of these share one entry (a packing of one size and
+// material has one): 64 bytes per kind of pair instead of per pair, which the loop reads every
+// step.
+struct PairLaw {
+  contact::HertzMindlinCoefficients hertz;
+  double inv_min_radius = 0;  // 1 / the smaller radius, 1/m (the pass-through check)
 };
 
 // One sphere–wall history slot (index wall * n_spheres + sphere).
 struct WallContact {
   Vec3 spring = Vec3::Zero();
   double viscous = 0;
-  bool touching = false;
 };
 
 // Material-pair constants, computed once (index a * n_materials + b).
@@ -62,11 +73,12 @@ struct PairConstants {
 
 struct SphereWorld {
   // Sphere state (columns are spheres).
-  Eigen::Matrix3Xd x, v, w;        // position m, velocity m/s, angular velocity rad/s
-  Eigen::Matrix3Xd force, torque;  // this step's totals, without gravity
-  Eigen::Matrix3Xd v_end;          // predicted end-of-step velocity the dashpots use
-  std::vector<Quat> orientation;
+  // No orientation: a sphere's contacts and outputs do not depend on it (its spin does).
+  Eigen::Matrix3Xd x, v, w;                   // position m, velocity m/s, angular velocity rad/s
+  Eigen::Matrix3Xd force, torque;             // this step's totals, without gravity
+  Eigen::Matrix3Xd v_end;                     // predicted end-of-step velocity the dashpots use
   std::vector<double> radius, mass, inertia;  // m, kg, kg·m² (2/5 m r²)
+  std::vector<double> inv_mass, inv_inertia;  // 1/kg, 1/(kg·m²): set by initialise
   std::vector<int> material, body;            // material index, scene body index
   std::vector<std::uint8_t> fixed;
 
@@ -79,13 +91,13 @@ struct SphereWorld {
   // Broad phase: Verlet neighbour list, rebuilt when a sphere moved more than skin/2.
   double skin = 0;
   std::vector<PairContact> pairs;
+  std::vector<PairLaw> laws;  // the distinct constants of the candidate pairs (PairContact::law)
   Eigen::Matrix3Xd x_at_build;
   long rebuilds = 0;
   std::vector<WallContact> wall_contacts;
 
   // Bookkeeping.
   Eigen::Matrix3Xd x_initial;    // gravity potential is measured from here
-  double contact_energy = 0;     // J, at the current positions
   double dissipated = 0;         // J, accumulated
   long contact_updates = 0;      // pair evaluations with positive overlap, accumulated
   double max_overlap_ratio = 0;  // largest overlap / smaller radius seen; > 1: passed through
@@ -108,6 +120,8 @@ void initialise(SphereWorld& world);
 void step(SphereWorld& world, double dt);
 
 // Kinetic (translation and rotation), contact, gravity and dissipated terms; no elastic term.
+// The contact energy (the elastic energy stored in the touching contacts at the current positions
+// and springs) is computed here, when asked, not in every step.
 EnergyBalance energy(const SphereWorld& world);
 
 // Bytes the world's arrays hold (their capacity): the solver's state apart from the scene it was

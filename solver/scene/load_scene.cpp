@@ -383,6 +383,7 @@ SceneDef parse_scene(const io::Json& json, const std::filesystem::path& file,
   s.gravity = r.vec3_or("gravity", Vec3::Zero());
   s.duration = r.positive("duration");
   parse_step(r, s);
+  s.allow_initial_overlap = r.boolean_or("allow_initial_overlap", false);
   const JsonReader mats = r.child("materials");
   std::vector<std::string> law_given;
   const std::map<std::string, int> material_index = parse_materials(mats, file, s, law_given);
@@ -400,6 +401,20 @@ SceneDef parse_scene(const io::Json& json, const std::filesystem::path& file,
     s.bodies.push_back(parse_body(b, std::move(body), material_index));
   }
   check_elastic_laws(mats, s, material_index, law_given);
+
+  // A starting overlap is allowed to spheres alone: mesh bodies keep their check
+  // (run/run_fdem.cpp), where the penalty contact has no pressed state to start from. A key that
+  // does nothing is refused.
+  if (s.allow_initial_overlap) {
+    for (std::size_t i = 0; i < s.bodies.size(); ++i) {
+      if (std::holds_alternative<MeshShape>(s.bodies[i].shape)) {
+        r.fail("allow_initial_overlap",
+               "sphere scenes only (spheres, planes and boxes), and bodies[" + std::to_string(i) +
+                   "] \"" + s.bodies[i].name + "\" is a mesh");
+      }
+    }
+  }
+
   if (r.has("contact")) s.contact = parse_contact(r.child("contact"));
   check_potential_bodies(r, s);
   check_penalty_range(r, s);

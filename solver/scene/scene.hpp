@@ -159,6 +159,10 @@ struct SceneDef {
   // stable one near ω dt = 2 has a bounded error (1 − (ω dt/2)²)⁻¹ − 1 that passes 100 % from
   // ω dt ≈ 1.41: such a run is flagged too, as its energies are meaningless.
   double unstable_energy_growth = 1.0;
+  // Sphere scenes only: bodies may start overlapping (a pressed packing, loaded from its first
+  // step by the contact law at the starting overlap). Off, a starting overlap is refused: it is
+  // usually a mistake, and the first step fires the bodies apart with the stored elastic energy.
+  bool allow_initial_overlap = false;
   std::vector<Material> materials;
   std::vector<BodyDef> bodies;
   ContactDef contact;

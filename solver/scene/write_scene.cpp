@@ -93,6 +93,7 @@ OJson scene_json(const SceneDef& s, const std::filesystem::path& folder) {
   if (s.dt_safety) j["dt_safety"] = *s.dt_safety;
   if (s.allow_unsafe_dt) j["allow_unsafe_dt"] = true;
   if (s.unstable_energy_growth != 1.0) j["unstable_energy_growth"] = s.unstable_energy_growth;
+  if (s.allow_initial_overlap) j["allow_initial_overlap"] = true;
   OJson materials = OJson::object();
   for (const Material& m : s.materials) materials[m.name] = material_json(m);
   j["materials"] = materials;

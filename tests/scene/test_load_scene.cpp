@@ -199,6 +199,27 @@ TEST(LoadScene, BodyStartingInsideAWallIsRefused) {
   EXPECT_NE(msg.find("starts inside \"floor\""), std::string::npos) << msg;
 }
 
+// allow_initial_overlap (a pressed packing) is a key of sphere scenes: it lets the ball start
+// inside the floor, and on a scene with a mesh body, which it could not affect, it is refused.
+TEST(LoadScene, InitialOverlapIsAllowedToSphereScenesOnly) {
+  const std::string pressed = edit("\"position\": [0, 0, 0.02], \"velocity\": [0, 0, -1]",
+                                   "\"position\": [0, 0, 0.00999], \"velocity\": [0, 0, 0]");
+  EXPECT_NE(error_of("pressed", pressed).find("allow_initial_overlap"), std::string::npos);
+  const std::string allowed =
+      pressed.substr(0, pressed.rfind('}')) + ", \"allow_initial_overlap\": true}";
+  EXPECT_EQ(error_of("pressed-allowed", allowed), "");
+  const std::string mesh = std::string(ASPERITY_SOURCE_DIR) + "/data/meshes/particle-seed3-320.off";
+  const std::string msg =
+      error_of("overlap-mesh", R"({"duration": 0.001, "allow_initial_overlap":
+      true, "materials": {"rock": {"density": 2650, "young": 5e10, "poisson": 0.25}}, "bodies":
+      [{"name": "rock", "material": "rock", "model": "fem", "shape": {"type": "mesh", "file": ")" +
+                                   mesh + R"("}}], "contact": {"law": "potential"}})");
+  EXPECT_NE(msg.find("allow_initial_overlap: sphere scenes only (spheres, planes and boxes), and "
+                     "bodies[0] \"rock\" is a mesh"),
+            std::string::npos)
+      << msg;
+}
+
 TEST(LoadScene, UnsafeDtIsRefusedUnlessAllowed) {
   const std::string text = edit("\"dt\": \"auto\"", "\"dt\": 1e-3");
   const std::string msg = error_of("dt", text);

@@ -52,6 +52,7 @@ void expect_same(const SceneDef& a, const SceneDef& b, const std::string& where)
   EXPECT_EQ(a.dt_safety, b.dt_safety) << where;
   EXPECT_EQ(a.allow_unsafe_dt, b.allow_unsafe_dt) << where;
   EXPECT_EQ(a.unstable_energy_growth, b.unstable_energy_growth) << where;
+  EXPECT_EQ(a.allow_initial_overlap, b.allow_initial_overlap) << where;
   ASSERT_EQ(a.materials.size(), b.materials.size()) << where;
   for (std::size_t i = 0; i < a.materials.size(); ++i) {
     const Material &m = a.materials[i], &n = b.materials[i];
@@ -106,6 +107,10 @@ std::vector<SceneDef> every_scene() {
     if (e.path().extension() != ".json") continue;
     out.push_back(parse_scene(io::read_json_file(e.path()).at("scene"), e.path(), "scene"));
   }
+  // No committed scene starts pressed (the perf table writes its pressed lattice): one that does.
+  SceneDef pressed = load_scene(root / "examples" / "glass-sphere-on-plate.json");
+  pressed.allow_initial_overlap = true;
+  out.push_back(pressed);
   return out;
 }
 
@@ -113,8 +118,9 @@ TEST(WriteScene, EveryExampleAndCaseScene) {
   const fs::path dir = fs::temp_directory_path() / "asperity_write_scene_tests";
   fs::create_directories(dir);
   const std::vector<SceneDef> scenes = every_scene();
-  // the 5 examples and the 200 validation cases of this tree: a folder that lost its files fails
-  ASSERT_GE(scenes.size(), 205u);
+  // the 5 examples, the 200 validation cases of this tree and the pressed example: a folder that
+  // lost its files fails
+  ASSERT_GE(scenes.size(), 206u);
   for (const SceneDef& s : scenes) {
     const fs::path file = dir / "scene.json";
     const nlohmann::ordered_json written = scene_json(s, dir);
