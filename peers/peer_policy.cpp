@@ -1,4 +1,4 @@
-// The sphere peers' gates from validation/peer_policy.json (peer_policy.hpp).
+// The peers' gates from validation/peer_policy.json (peer_policy.hpp).
 #include "peers/peer_policy.hpp"
 
 #include <algorithm>
@@ -43,6 +43,18 @@ std::vector<std::string> strings(const io::JsonReader& r, std::string_view key) 
   return out;
 }
 
+// A list of {"match": PATTERN, "why": ...}: the case names it leaves out.
+std::vector<std::regex> name_exclusions(const io::JsonReader& list) {
+  std::vector<std::regex> out;
+  for (std::size_t i = 0, n = list.require_array(); i < n; ++i) {
+    const io::JsonReader e = list.at(i);
+    e.only_keys({"match", "why"});
+    (void)why_of(e);
+    out.push_back(pattern(e, "match"));
+  }
+  return out;
+}
+
 // A case left out of every sphere peer's gates: it has a top-level key, its scene has a contact
 // law, or its name matches.
 struct Exclusion {
@@ -61,6 +73,15 @@ struct Refusal {
   std::string expect, why;
 };
 
+// The peer's polyhedra gates (YADE's only): the cases whose name matches, but those excluded.
+struct Polyhedra {
+  std::regex match;
+  std::vector<std::regex> exclude;
+  std::vector<std::string> ci;
+  double impulse = 0, peak_force = 0, contact_duration = 0;
+  std::string why;  // each tolerance's, in that order
+};
+
 struct Policy {
   std::vector<std::string> shapes, models, ci;
   std::vector<Exclusion> exclude;  // every peer's
@@ -70,10 +91,32 @@ struct Policy {
   double tolerance = 0;
   std::vector<Rule> rules;
   std::vector<Refusal> refused;
+  std::optional<Polyhedra> polyhedra;
 };
 
 double tolerance_of(const io::JsonReader& r) {
   return r.in_range("tolerance", 0.0, 1e6, true, false);
+}
+
+Polyhedra read_polyhedra(const io::JsonReader& r) {
+  r.only_keys({"why", "cases", "exclude", "ci", "tolerances"});
+  (void)why_of(r);
+  Polyhedra p{.match = pattern(r, "cases"), .exclude = name_exclusions(r.child("exclude"))};
+  const io::JsonReader ci = r.child("ci");
+  ci.only_keys({"why", "cases"});
+  (void)why_of(ci);
+  p.ci = strings(ci, "cases");
+  const io::JsonReader tol = r.child("tolerances");
+  tol.only_keys({"impulse", "peak_force", "contact_duration"});
+  for (auto [key, value] : {std::pair{"impulse", &p.impulse},
+                            {"peak_force", &p.peak_force},
+                            {"contact_duration", &p.contact_duration}}) {
+    const io::JsonReader t = tol.child(key);
+    t.only_keys({"tolerance", "why"});
+    *value = tolerance_of(t);
+    p.why += (p.why.empty() ? "" : "; ") + std::string(key) + ": " + why_of(t);
+  }
+  return p;
 }
 
 Policy read_policy(const fs::path& file, const std::string& peer) {
@@ -111,18 +154,12 @@ Policy read_policy(const fs::path& file, const std::string& peer) {
     peers.fail(peer, "no policy for peer \"" + peer + "\" (the policy has " + known + ")");
   }
   const io::JsonReader pr = peers.child(peer);
-  pr.only_keys({"labels", "exclude", "tolerance", "why", "rules", "refused"});
+  pr.only_keys({"labels", "exclude", "tolerance", "why", "rules", "refused", "polyhedra"});
   const io::JsonReader labels = pr.child("labels");
   labels.only_keys({"ci", "full"});
   p.ci_label = labels.string("ci");
   p.full_label = labels.string("full");
-  const io::JsonReader pex = pr.child("exclude");
-  for (std::size_t i = 0, n = pex.require_array(); i < n; ++i) {
-    const io::JsonReader e = pex.at(i);
-    e.only_keys({"match", "why"});
-    (void)why_of(e);
-    p.peer_exclude.push_back(pattern(e, "match"));
-  }
+  p.peer_exclude = name_exclusions(pr.child("exclude"));
   p.tolerance = tolerance_of(pr);
   p.why = why_of(pr);
   const io::JsonReader rules = pr.child("rules");
@@ -140,6 +177,7 @@ Policy read_policy(const fs::path& file, const std::string& peer) {
     p.refused.push_back(
         {.match = pattern(e, "match"), .expect = e.string("expect"), .why = why_of(e)});
   }
+  if (pr.has("polyhedra")) p.polyhedra = read_polyhedra(pr.child("polyhedra"));
   return p;
 }
 
@@ -184,6 +222,12 @@ bool excluded(const io::Json& c, const std::string& name, const Policy& p) {
   return false;
 }
 
+bool polyhedra_case(const std::string& name, const Polyhedra& p) {
+  if (!std::regex_search(name, p.match)) return false;
+  return std::none_of(p.exclude.begin(), p.exclude.end(),
+                      [&](const std::regex& re) { return std::regex_search(name, re); });
+}
+
 std::string shortest(double x) {
   char buf[32];
   const auto r = std::to_chars(buf, buf + sizeof buf, x);
@@ -213,10 +257,33 @@ std::vector<PeerGate> peer_gates(const fs::path& policy, const std::string& peer
                        p.ci[i] + "\" under " + cases.string());
     }
   }
+  if (p.polyhedra) {
+    for (std::size_t i = 0; i < p.polyhedra->ci.size(); ++i) {
+      const std::string& ci = p.polyhedra->ci[i];
+      if (!found(names, ci) || !polyhedra_case(ci, *p.polyhedra)) {
+        throw InputError(policy.string() + ": peers." + peer + ".polyhedra.ci.cases[" +
+                         std::to_string(i) + "]: no polyhedra case \"" + ci + "\" under " +
+                         cases.string());
+      }
+    }
+  }
   std::vector<PeerGate> gates;
   for (std::size_t k = 0; k < files.size(); ++k) {
-    const io::Json c = io::read_json_file(files[k]);
     const std::string& name = names[k];
+    if (p.polyhedra && polyhedra_case(name, *p.polyhedra)) {
+      const Polyhedra& ph = *p.polyhedra;
+      gates.push_back({.name = name,
+                       .file = files[k],
+                       .label = found(ph.ci, name) ? p.ci_label : p.full_label,
+                       .tolerance = std::max({ph.impulse, ph.peak_force, ph.contact_duration}),
+                       .why = ph.why,
+                       .polyhedra = true,
+                       .impulse = ph.impulse,
+                       .peak_force = ph.peak_force,
+                       .contact_duration = ph.contact_duration});
+      continue;
+    }
+    const io::Json c = io::read_json_file(files[k]);
     if (!sphere_bodies(c, p) || excluded(c, name, p)) continue;
     PeerGate g{.name = name, .file = files[k]};
     const auto refusal = std::find_if(p.refused.begin(), p.refused.end(), [&](const Refusal& r) {
@@ -253,8 +320,16 @@ std::string gate_lines(const std::string& peer, const fs::path& policy,
   o << "# " << peer << ": " << gates.size() - static_cast<std::size_t>(refused) << " gates run, "
     << refused << " refused (" << policy.string() << ")\n";
   for (const PeerGate& g : gates) {
-    o << (g.refused ? "refused" : "run") << '\t' << g.name << '\t' << g.file.string() << '\t'
-      << g.label << '\t' << (g.refused ? g.expect : shortest(g.tolerance)) << '\t' << g.why << '\n';
+    o << (g.refused     ? "refused"
+          : g.polyhedra ? "polyhedra"
+                        : "run")
+      << '\t' << g.name << '\t' << g.file.string() << '\t' << g.label << '\t'
+      << (g.refused ? g.expect : shortest(g.tolerance));
+    if (g.polyhedra) {
+      o << " (impulse " << shortest(g.impulse) << ", peak_force " << shortest(g.peak_force)
+        << ", contact_duration " << shortest(g.contact_duration) << ")";
+    }
+    o << '\t' << g.why << '\n';
   }
   return o.str();
 }

@@ -1,7 +1,7 @@
-// The sphere peers' cross-check gates as data (validation/peer_policy.json): which validation
-// cases each peer's gate runs, at which tolerance, and which it must refuse, each with its why
-// (issue 27, item 5). `asperity crosscheck --list --peer P` prints what peer_gates() gives, and
-// validation/gates/CMakeLists.txt makes a test of each line.
+// The peers' cross-check gates as data (validation/peer_policy.json): which validation cases each
+// peer's gate runs (the sphere cases; YADE's polyhedra too), at which tolerance, and which it must
+// refuse, each with its why (issue 27, item 5). `asperity crosscheck --list --peer P` prints what
+// peer_gates() gives, and validation/gates/peer_gates.cmake makes a test of each line.
 #pragma once
 
 #include <filesystem>
@@ -19,6 +19,10 @@ struct PeerGate {
   std::string expect;          // ... with a message matching this regular expression
   double tolerance = 0;        // else: the largest relative difference it accepts
   std::string why;             // the reason of the tolerance or of the refusal
+  // A polyhedra gate (YADE's Polyhedra, peers.yade.polyhedra): each quantity's own tolerance,
+  // `tolerance` the largest of them (crosscheck's --max-rel-diff).
+  bool polyhedra = false;
+  double impulse = 0, peak_force = 0, contact_duration = 0;
 };
 
 // The gates of `peer` over every case file under `cases` (sorted by path), as `policy` says.
@@ -28,8 +32,9 @@ std::vector<PeerGate> peer_gates(const std::filesystem::path& policy, const std:
                                  const std::filesystem::path& cases);
 
 // The gates as lines of tab-separated fields, for CMake and for reading:
-//   run      NAME  FILE  LABEL  TOLERANCE  WHY
-//   refused  NAME  FILE  LABEL  EXPECT     WHY
+//   run        NAME  FILE  LABEL  TOLERANCE  WHY
+//   refused    NAME  FILE  LABEL  EXPECT     WHY
+//   polyhedra  NAME  FILE  LABEL  TOLERANCE (impulse I, peak_force P, contact_duration D)  WHY
 // after a first line "# ..." that names the peer, the policy and the counts.
 std::string gate_lines(const std::string& peer, const std::filesystem::path& policy,
                        const std::vector<PeerGate>& gates);

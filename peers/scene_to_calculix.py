@@ -27,6 +27,8 @@ import subprocess
 import sys
 import time
 
+from peer_files import write_atomically, write_json  # beside this file
+
 
 def fail(out_dir, why):
     with open(os.path.join(out_dir, "error.txt"), "w") as f:
@@ -223,12 +225,13 @@ def write_trace(out_dir, p, mass, pole_z):
     rows = with_contact_ends(rows)
     e1, e2, e3, origin = (p["frame"][k] for k in ("e1", "e2", "e3", "origin"))
     sign = 1.0 if p["record"] == "ball" else -1.0
-    with open(os.path.join(out_dir, "raw.csv"), "w") as f:
+    def trace(f):
         f.write("t,fx,fy,fz,s,nx,ny,nz,x,y,z,vx,vy,vz\n")
         for t, fz, s, z, v in rows:
             values = ([t] + [sign * fz * c for c in e3] + [s] + [sign * c for c in e3] +
                       [origin[i] + z * e3[i] for i in range(3)] + [v * c for c in e3])
             f.write(",".join("%.12g" % c for c in values) + "\n")
+    write_atomically(os.path.join(out_dir, "raw.csv"), trace)
     return len(times)
 
 
@@ -291,12 +294,12 @@ def main():
         fail(out_dir, "ccx failed (exit %d): %s" % (code, (why[-1] if why else log[-300:]).strip()))
     nincrements = write_trace(out_dir, p, mass, nodes[pole][2])
     version = re.search(r"Version\s+([\d.]+)", log)
-    with open(os.path.join(out_dir, "raw.json"), "w") as f:
-        json.dump({"ccx_version": version.group(1) if version else "",
-                   "nodes": len(nodes), "tets": len(tets), "symmetry": "quarter",
-                   "slave_nodes": nslave, "meshed_mass": mass, "increments": nincrements,
-                   "cpu_seconds": ccx_cpu, "wall_seconds": ccx_wall,
-                   "total_wall_seconds": time.time() - wall0}, f, indent=2)
+    write_json(os.path.join(out_dir, "raw.json"),
+               {"ccx_version": version.group(1) if version else "",
+                "nodes": len(nodes), "tets": len(tets), "symmetry": "quarter",
+                "slave_nodes": nslave, "meshed_mass": mass, "increments": nincrements,
+                "cpu_seconds": ccx_cpu, "wall_seconds": ccx_wall,
+                "total_wall_seconds": time.time() - wall0})
 
 
 if __name__ == "__main__":

@@ -40,6 +40,10 @@ from yade.wrapper import (Bo1_Box_Aabb, Bo1_Sphere_Aabb, Bo1_Wall_Aabb, ForceRes
                           Ip2_FrictMat_FrictMat_MindlinPhys, Law2_ScGeom_FrictPhys_CundallStrack,
                           Law2_ScGeom_MindlinPhys_Mindlin, MatchMaker, NewtonIntegrator, PyRunner)
 
+# The scripts beside this one (peer_files.py, yade_polyhedra.py): yade -x sets argv[0] to it.
+sys.path.insert(0, os.path.dirname(os.path.abspath(sys.argv[0])))
+from peer_files import write_atomically, write_json  # noqa: E402
+
 
 class MappingError(Exception):
     pass
@@ -268,7 +272,6 @@ def main():
         spec = json.load(fh)
     if spec["law"] == "volume-linear":
         # Rigid polyhedra: their own translator beside this file (yade_polyhedra.py).
-        sys.path.insert(0, os.path.dirname(os.path.abspath(sys.argv[0])))  # yade -x sets argv[0]
         import yade_polyhedra
         yade_polyhedra.run(spec, out)
         return
@@ -285,21 +288,19 @@ def main():
         # The cost table (tools/report/peer_cost.py): the plain run alone.
         raw = {"yade_version": yade.config.version, "steps": steps, "dt": O.dt, "cpu_seconds": cpu,
                "wall_seconds": wall}
-        with open(os.path.join(out, "raw.json.partial"), "w") as fh:
-            json.dump(raw, fh, indent=2)
-        os.replace(os.path.join(out, "raw.json.partial"), os.path.join(out, "raw.json"))
+        write_json(os.path.join(out, "raw.json"), raw)
         return
 
     # 2. The force history: the same scene with a recorder after the interaction loop. One extra
     #    iteration gives the row at t = steps * dt (forces at the final positions), as asperity's.
     rec = build(spec, record=True)
     globals()["RECORDER"] = rec
-    with open(os.path.join(out, "raw.csv.partial"), "w") as fh:
+    def record(fh):
         names = [b["name"] for b in spec["bodies"] if b["shape"]["type"] == "sphere" and not b["fixed"]]
         fh.write("t,fx,fy,fz" + "".join(f",{b}.x,{b}.y,{b}.z,{b}.vx,{b}.vy,{b}.vz" for b in names) + "\n")
         rec.out = fh
         O.run(steps + 1, True)
-    os.replace(os.path.join(out, "raw.csv.partial"), os.path.join(out, "raw.csv"))
+    write_atomically(os.path.join(out, "raw.csv"), record)
     final = {}
     for b in spec["bodies"]:
         st = O.bodies[rec.ids[b["name"]]].state
@@ -313,9 +314,7 @@ def main():
         "final": final,
         "stiffness": list(rec.stiffness.values()),
     }
-    with open(os.path.join(out, "raw.json.partial"), "w") as fh:
-        json.dump(raw, fh, indent=2)
-    os.replace(os.path.join(out, "raw.json.partial"), os.path.join(out, "raw.json"))
+    write_json(os.path.join(out, "raw.json"), raw)
 
 
 try:

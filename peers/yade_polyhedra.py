@@ -23,7 +23,6 @@
 #   s (overlap) -> PolyhedraGeom.penetrationVolume / equivalentCrossSection: asperity's recorded
 #                 depth V/|S|; -1e300 while apart, as asperity records it; n its normal, into the
 #                 recorded body (the restitution's direction).
-import json
 import math
 import os
 import sys
@@ -36,6 +35,8 @@ from yade.wrapper import (Bo1_Polyhedra_Aabb, ForceResetter, Ig2_Polyhedra_Polyh
                           Ip2_PolyhedraMat_PolyhedraMat_PolyhedraPhys,
                           Law2_PolyhedraGeom_PolyhedraPhys_Volumetric, NewtonIntegrator, PolyhedraMat)
 from yade.minieigenHP import Vector3
+
+from peer_files import write_atomically, write_json  # beside this file (scene_to_yade.py's path)
 
 
 class MappingError(Exception):
@@ -150,15 +151,14 @@ def run(spec, outdir):
         "last_contact_step": step_cpu[last] if last is not None else None,
         "max": max(step_cpu) if step_cpu else None,
     }
-    with open(os.path.join(outdir, "raw.csv.partial"), "w") as out:
+    def trace(out):
         names = [b["name"] for b in spec["bodies"] if not b["fixed"]]
         out.write("t,fx,fy,fz,s,nx,ny,nz" +
                   "".join(f",{b}.x,{b}.y,{b}.z,{b}.vx,{b}.vy,{b}.vz" for b in names) + "\n")
         for r in rows:
             out.write(",".join(repr(float(x)) for x in r) + "\n")
-    os.replace(os.path.join(outdir, "raw.csv.partial"), os.path.join(outdir, "raw.csv"))
-    with open(os.path.join(outdir, "raw.json.partial"), "w") as out:
-        json.dump({"final": final, "cpu_seconds": cpu, "wall_seconds": wall, "dt": spec["dt"],
-                   "steps": steps, "stiffness": stiffness, "step_seconds": step_seconds,
-                   "yade_version": yade.config.version}, out, indent=2)
-    os.replace(os.path.join(outdir, "raw.json.partial"), os.path.join(outdir, "raw.json"))
+    write_atomically(os.path.join(outdir, "raw.csv"), trace)
+    write_json(os.path.join(outdir, "raw.json"),
+               {"final": final, "cpu_seconds": cpu, "wall_seconds": wall, "dt": spec["dt"],
+                "steps": steps, "stiffness": stiffness, "step_seconds": step_seconds,
+                "yade_version": yade.config.version})

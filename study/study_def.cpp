@@ -105,40 +105,8 @@ void read_set(const JsonReader& p, const fs::path& base, std::vector<ParticleSou
   }
 }
 
-}  // namespace
-
-StudyDef load_study(const fs::path& file) {
-  const Json json = io::read_json_file(file);
-  const JsonReader r(json, file, "");
-  r.require_object();
-  r.only_keys({"name",
-               "description",
-               "particles",
-               "particle_size",
-               "resolutions",
-               "models",
-               "placements",
-               "refinement",
-               "speed",
-               "orientation",
-               "orientations",
-               "gap",
-               "duration",
-               "end_after_separation",
-               "penalty_alpha",
-               "gravity",
-               "material",
-               "block_material",
-               "rows",
-               "jobs",
-               "reference",
-               "reference_patch_check",
-               "reference_elements_across"});
-  StudyDef s;
-  s.file = file;
-  s.name = r.has("name") ? r.string("name") : file.stem().string();
-  const fs::path base = file.parent_path();
-
+// "particles" (a set and/or meshes) and "orientations": the study's particles, each named once.
+void read_particles(const JsonReader& r, const fs::path& base, StudyDef& s) {
   const JsonReader p = r.child("particles");
   p.require_object();
   p.only_keys({"set", "count", "names", "meshes"});
@@ -191,8 +159,10 @@ StudyDef load_study(const fs::path& file) {
       if (s.particles[j].name == n) p.fail("", "particle name \"" + n + "\" appears twice");
     }
   }
-  if (r.has("particle_size")) s.particle_size = r.positive("particle_size");
+}
 
+// "resolutions": even triangle counts, sorted, each once.
+void read_resolutions(const JsonReader& r, StudyDef& s) {
   s.resolutions = {100, 250, 500, 1000, 2000};
   if (r.has("resolutions")) {
     const JsonReader list = r.child("resolutions");
@@ -216,7 +186,10 @@ StudyDef load_study(const fs::path& file) {
     }
   }
   s.reference = s.resolutions.back();
+}
 
+// "models": each once.
+void read_models(const JsonReader& r, StudyDef& s) {
   s.models = {ModelKind::fem, ModelKind::rigid, ModelKind::sphere};
   if (r.has("models")) {
     const JsonReader list = r.child("models");
@@ -244,6 +217,10 @@ StudyDef load_study(const fs::path& file) {
     }
     if (s.models.empty()) list.fail("", "must list at least one model");
   }
+}
+
+// "placements".
+void read_placements(const JsonReader& r, StudyDef& s) {
   s.placements = {Placement::centroid, Placement::lowest};
   if (r.has("placements")) {
     const JsonReader list = r.child("placements");
@@ -260,65 +237,69 @@ StudyDef load_study(const fs::path& file) {
     }
     if (s.placements.empty()) list.fail("", "must list at least one placement");
   }
+}
 
-  if (r.has("refinement")) {
-    const JsonReader f = r.child("refinement");
-    f.require_object();
-    f.only_keys({"sizes", "resolutions", "placements", "tolerance", "focus_radius", "growth",
-                 "max_contact_factor"});
-    const JsonReader sizes = f.child("sizes");
-    for (std::size_t i = 0, n = sizes.require_array(); i < n; ++i) {
-      const Json& v = sizes.at(i).value();
-      // Below 1e-3 R the tetrahedra (and the steps) would run to millions; above 1 the size is
-      // not a refinement of any surface the study meshes.
-      if (!v.is_number() || !(v.get<double>() >= 1e-3 && v.get<double>() <= 1)) {
-        sizes.at(i).fail("", "must be a size over the equivalent radius from 0.001 to 1 (got " +
-                                 io::echo(v) + ")");
-      }
-      if (i > 0 && !(v.get<double>() < s.refinement.sizes.back())) {
-        sizes.at(i).fail("", "must be smaller than the size before it (the sequence refines)");
-      }
-      s.refinement.sizes.push_back(v.get<double>());
+// "refinement": the refined element sizes and where they apply (after the resolutions and
+// placements, which it names).
+void read_refinement(const JsonReader& f, StudyDef& s) {
+  f.require_object();
+  f.only_keys({"sizes", "resolutions", "placements", "tolerance", "focus_radius", "growth",
+               "max_contact_factor"});
+  const JsonReader sizes = f.child("sizes");
+  for (std::size_t i = 0, n = sizes.require_array(); i < n; ++i) {
+    const Json& v = sizes.at(i).value();
+    // Below 1e-3 R the tetrahedra (and the steps) would run to millions; above 1 the size is
+    // not a refinement of any surface the study meshes.
+    if (!v.is_number() || !(v.get<double>() >= 1e-3 && v.get<double>() <= 1)) {
+      sizes.at(i).fail("", "must be a size over the equivalent radius from 0.001 to 1 (got " +
+                               io::echo(v) + ")");
     }
-    if (f.has("resolutions")) {
-      const JsonReader list = f.child("resolutions");
-      for (std::size_t i = 0, n = list.require_array(); i < n; ++i) {
-        const Json& v = list.at(i).value();
-        if (!v.is_number_integer() || std::find(s.resolutions.begin(), s.resolutions.end(),
-                                                v.get<long>()) == s.resolutions.end()) {
-          list.at(i).fail("", "must be one of the study's resolutions (got " + io::echo(v) + ")");
-        }
-        s.refinement.resolutions.push_back(v.get<long>());
-      }
+    if (i > 0 && !(v.get<double>() < s.refinement.sizes.back())) {
+      sizes.at(i).fail("", "must be smaller than the size before it (the sequence refines)");
     }
-    if (f.has("placements")) {
-      const JsonReader list = f.child("placements");
-      for (std::size_t i = 0, n = list.require_array(); i < n; ++i) {
-        const Json& v = list.at(i).value();
-        const std::string m = v.is_string() ? v.get<std::string>() : "";
-        const auto it = std::find_if(s.placements.begin(), s.placements.end(),
-                                     [&](Placement q) { return m == placement_name(q); });
-        if (it == s.placements.end())
-          list.at(i).fail("", "must be one of the study's placements (got " + io::echo(v) + ")");
-        s.refinement.placements.push_back(*it);
+    s.refinement.sizes.push_back(v.get<double>());
+  }
+  if (f.has("resolutions")) {
+    const JsonReader list = f.child("resolutions");
+    for (std::size_t i = 0, n = list.require_array(); i < n; ++i) {
+      const Json& v = list.at(i).value();
+      if (!v.is_number_integer() || std::find(s.resolutions.begin(), s.resolutions.end(),
+                                              v.get<long>()) == s.resolutions.end()) {
+        list.at(i).fail("", "must be one of the study's resolutions (got " + io::echo(v) + ")");
       }
-    }
-    if (f.has("tolerance")) s.refinement.tolerance = f.in_range("tolerance", 0, 0.5, true, false);
-    if (f.has("focus_radius"))
-      s.refinement.focus_radius = f.in_range("focus_radius", 0, 100, false, false);
-    if (f.has("growth")) s.refinement.growth = f.in_range("growth", 0, 10, false, false);
-    if (f.has("max_contact_factor")) {
-      // As the scene key contact.max_contact_factor: 0 (none) or a factor of at least 1.
-      const double c = f.in_range("max_contact_factor", 0, 1e6, false, false);
-      if (c > 0 && c < 1) {
-        f.fail(
-            "max_contact_factor",
-            "must be 0 (no limit) or at least 1 (the contact cannot lengthen the elements' step)");
-      }
-      s.refinement.max_contact_factor = c;
+      s.refinement.resolutions.push_back(v.get<long>());
     }
   }
+  if (f.has("placements")) {
+    const JsonReader list = f.child("placements");
+    for (std::size_t i = 0, n = list.require_array(); i < n; ++i) {
+      const Json& v = list.at(i).value();
+      const std::string m = v.is_string() ? v.get<std::string>() : "";
+      const auto it = std::find_if(s.placements.begin(), s.placements.end(),
+                                   [&](Placement q) { return m == placement_name(q); });
+      if (it == s.placements.end())
+        list.at(i).fail("", "must be one of the study's placements (got " + io::echo(v) + ")");
+      s.refinement.placements.push_back(*it);
+    }
+  }
+  if (f.has("tolerance")) s.refinement.tolerance = f.in_range("tolerance", 0, 0.5, true, false);
+  if (f.has("focus_radius"))
+    s.refinement.focus_radius = f.in_range("focus_radius", 0, 100, false, false);
+  if (f.has("growth")) s.refinement.growth = f.in_range("growth", 0, 10, false, false);
+  if (f.has("max_contact_factor")) {
+    // As the scene key contact.max_contact_factor: 0 (none) or a factor of at least 1.
+    const double c = f.in_range("max_contact_factor", 0, 1e6, false, false);
+    if (c > 0 && c < 1) {
+      f.fail("max_contact_factor",
+             "must be 0 (no limit) or at least 1 (the contact cannot lengthen the elements' step)");
+    }
+    s.refinement.max_contact_factor = c;
+  }
+}
 
+// The impact: "speed", "orientation", "gap", "duration", "end_after_separation",
+// "penalty_alpha", "gravity".
+void read_impact(const JsonReader& r, StudyDef& s) {
   if (r.has("speed")) s.speed = r.in_range("speed", 0, 1000, true, false);
   if (r.has("orientation")) {
     const Json& o = r.value()["orientation"];
@@ -346,6 +327,10 @@ StudyDef load_study(const fs::path& file) {
   if (r.has("penalty_alpha"))
     s.penalty_alpha = r.in_range("penalty_alpha", scene::kMinPenaltyAlpha, 1e6, false, false);
   if (r.has("gravity")) s.gravity = r.in_range("gravity", 0, 1000, false, false);
+}
+
+// "material" and "block_material" (a rock's by default).
+void read_materials(const JsonReader& r, StudyDef& s) {
   const Material rock{
       .name = "particle", .density = 2650, .young = 5e10, .poisson = 0.25, .friction = 0};
   s.material = r.has("material") ? read_material(r.child("material"), "particle", rock) : rock;
@@ -353,6 +338,10 @@ StudyDef load_study(const fs::path& file) {
   s.block_material =
       r.has("block_material") ? read_material(r.child("block_material"), "block", rock) : rock;
   s.block_material.name = "block";
+}
+
+// "reference" and the source reference's keys.
+void read_reference(const JsonReader& r, StudyDef& s) {
   if (r.has("reference")) {
     const Json& v = r.value()["reference"];
     if (v == "source")
@@ -370,6 +359,51 @@ StudyDef load_study(const fs::path& file) {
   if (r.has("reference_elements_across"))
     s.source_reference.elements_across =
         r.in_range("reference_elements_across", 1, 12, false, false);
+}
+
+}  // namespace
+
+StudyDef load_study(const fs::path& file) {
+  const Json json = io::read_json_file(file);
+  const JsonReader r(json, file, "");
+  r.require_object();
+  r.only_keys({"name",
+               "description",
+               "particles",
+               "particle_size",
+               "resolutions",
+               "models",
+               "placements",
+               "refinement",
+               "speed",
+               "orientation",
+               "orientations",
+               "gap",
+               "duration",
+               "end_after_separation",
+               "penalty_alpha",
+               "gravity",
+               "material",
+               "block_material",
+               "rows",
+               "jobs",
+               "reference",
+               "reference_patch_check",
+               "reference_elements_across"});
+  StudyDef s;
+  s.file = file;
+  s.name = r.has("name") ? r.string("name") : file.stem().string();
+  const fs::path base = file.parent_path();
+
+  read_particles(r, base, s);
+  if (r.has("particle_size")) s.particle_size = r.positive("particle_size");
+  read_resolutions(r, s);
+  read_models(r, s);
+  read_placements(r, s);
+  if (r.has("refinement")) read_refinement(r.child("refinement"), s);
+  read_impact(r, s);
+  read_materials(r, s);
+  read_reference(r, s);
   if (r.has("rows")) s.rows = static_cast<int>(r.integer("rows", 10, 1'000'000));
   if (r.has("jobs")) s.jobs = static_cast<int>(r.integer("jobs", 0, 1024));
   return s;

@@ -405,13 +405,13 @@ void initialise(SphereWorld& world) {
   world.pair.assign(nm * nm, {});
   for (int a = 0; a < nm; ++a) {
     for (int b = 0; b < nm; ++b) {
-      const Material &ma = world.materials[a], &mb = world.materials[b];
-      PairConstants& pc = world.pair[a * nm + b];
-      pc.young_eff = effective_young(ma, mb);
-      pc.shear_eff = effective_shear(ma, mb);
-      pc.friction = world.law.friction.value_or(pair_friction(ma, mb));
-      pc.zeta = contact::damping_for_restitution(
-          world.law.normal, world.law.restitution.value_or(pair_restitution(ma, mb)));
+      const contact::PairConstants c =
+          contact::pair_constants(world.law.normal, world.law.friction, world.law.restitution,
+                                  world.materials[a], world.materials[b]);
+      world.pair[a * nm + b] = {.young_eff = c.young_eff,
+                                .shear_eff = c.shear_eff,
+                                .friction = c.friction,
+                                .zeta = c.zeta};
     }
   }
   world.force = Eigen::Matrix3Xd::Zero(3, n);

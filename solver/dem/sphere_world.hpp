@@ -9,6 +9,7 @@
 #include <Eigen/Core>
 
 #include "solver/contact/hertz_mindlin.hpp"
+#include "solver/contact/pair_constants.hpp"
 #include "solver/contact/restitution_damping.hpp"
 #include "solver/core/body_contacts.hpp"
 #include "solver/core/energy.hpp"
@@ -63,7 +64,8 @@ struct WallContact {
   double viscous = 0;
 };
 
-// Material-pair constants, computed once (index a * n_materials + b).
+// Material-pair constants, set once by initialise from contact::pair_constants (index
+// a * n_materials + b): its fields but the restitution, which the force loop does not read.
 struct PairConstants {
   double young_eff = 0;
   double shear_eff = 0;

@@ -6,7 +6,6 @@
 #include <cmath>
 #include <cstdint>
 #include <limits>
-#include <numbers>
 #include <optional>
 
 #include "solver/core/error.hpp"
@@ -18,6 +17,7 @@
 #include "solver/run/summary.hpp"
 #include "solver/run/time_loop.hpp"
 #include "solver/run/vtk_series.hpp"
+#include "solver/scene/resolve.hpp"
 
 namespace asperity::run {
 namespace {
@@ -71,22 +71,18 @@ dem::SphereWorld build_sphere_world(const scene::SceneDef& s) {
   dem::SphereWorld w;
   w.materials = s.materials;
   w.gravity = s.gravity;
+  w.law.normal = scene::normal_law(s.contact.law);
   switch (s.contact.law) {
     case scene::ContactLaw::hertz:
-      w.law.normal = contact::NormalLaw::hertz;
       w.law.tangential = false;
       break;
     case scene::ContactLaw::hertz_mindlin:
-      w.law.normal = contact::NormalLaw::hertz;
       w.law.tangential = true;
       break;
     case scene::ContactLaw::linear:
-      w.law.normal = contact::NormalLaw::linear;
       w.law.tangential = true;
       w.law.kn = *s.contact.kn;
-      // Default k_t/k_n = 2/7: equal normal and tangential periods for a solid sphere
-      // (Schäfer, Dippel & Wolf 1996).
-      w.law.kt = s.contact.kt.value_or(2.0 / 7.0 * w.law.kn);
+      w.law.kt = scene::linear_kt(s.contact);
       break;
     case scene::ContactLaw::potential:
       throw InputError(where +
@@ -107,8 +103,7 @@ dem::SphereWorld build_sphere_world(const scene::SceneDef& s) {
     const std::string key = "bodies[" + std::to_string(b) + "] \"" + body.name + "\": ";
     if (const auto* sph = std::get_if<scene::SphereShape>(&body.shape)) {
       const double r = sph->radius;
-      const double m =
-          s.materials[body.material].density * 4.0 / 3.0 * std::numbers::pi * r * r * r;
+      const double m = scene::sphere_mass(s, static_cast<int>(b));
       w.radius.push_back(r);
       w.mass.push_back(m);
       w.inertia.push_back(0.4 * m * r * r);

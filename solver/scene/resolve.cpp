@@ -15,13 +15,8 @@ double linear_kt(const ContactDef& contact) {
 }
 
 PairConstants pair_constants(const ContactDef& contact, const Material& a, const Material& b) {
-  PairConstants p;
-  p.young_eff = effective_young(a, b);
-  p.shear_eff = effective_shear(a, b);
-  p.friction = contact.friction.value_or(pair_friction(a, b));
-  p.restitution = contact.restitution.value_or(pair_restitution(a, b));
-  p.zeta = contact::damping_for_restitution(normal_law(contact.law), p.restitution);
-  return p;
+  return contact::pair_constants(normal_law(contact.law), contact.friction, contact.restitution, a,
+                                 b);
 }
 
 double sphere_mass(const SceneDef& scene, int body) {

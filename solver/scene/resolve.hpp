@@ -4,6 +4,7 @@
 // peer adapter read them here, so that a default or a pair rule changes once (issue 27, item 3).
 #pragma once
 
+#include "solver/contact/pair_constants.hpp"
 #include "solver/contact/restitution_damping.hpp"
 #include "solver/core/effective_mass.hpp"
 #include "solver/core/material.hpp"
@@ -19,14 +20,9 @@ contact::NormalLaw normal_law(ContactLaw law);
 // sphere equal normal and tangential periods (Schäfer, Dippel & Wolf 1996). Needs contact.kn.
 double linear_kt(const ContactDef& contact);
 
-// The constants of the pair of materials a and b under the scene's contact block.
-struct PairConstants {
-  double young_eff = 0;    // Hertz E*, Pa (core/material.hpp)
-  double shear_eff = 0;    // Mindlin G*, Pa
-  double friction = 0;     // Coulomb μ: contact.friction, else the smaller of the two
-  double restitution = 1;  // contact.restitution, else the smaller of the two
-  double zeta = 0;         // the damping that realises it under normal_law(contact.law)
-};
+// The constants of the pair of materials a and b under the scene's contact block (friction and
+// restitution overrides, damping for normal_law(contact.law)): contact/pair_constants.hpp's rule.
+using PairConstants = contact::PairConstants;
 PairConstants pair_constants(const ContactDef& contact, const Material& a, const Material& b);
 
 // The mass of sphere body `body` (density × 4/3 π r³), kg.

@@ -15,6 +15,7 @@
 #include "study/study_def.hpp"
 #include "study/study_run.hpp"
 #include "study/tables/tables.hpp"
+#include "tests/study/case_files.hpp"
 
 namespace asperity::study::study_reference_tests {
 namespace {
@@ -22,10 +23,7 @@ namespace fs = std::filesystem;
 using tables::OJson;
 
 fs::path scratch(const std::string& name) {
-  const fs::path dir = fs::temp_directory_path() / ("asperity_study_reference_" + name);
-  fs::remove_all(dir);
-  fs::create_directories(dir);
-  return dir;
+  return test::scratch("study_reference", name);
 }
 
 fs::path study_file(const std::string& name, const std::string& extra) {
@@ -96,24 +94,6 @@ TEST(StudyReference, SourceCasesPerParticlePlacementPatchAndLevel) {
   EXPECT_EQ(cases[12].particle, "b");
 }
 
-// A finished case: summary.json with the measures and case.json (the done marker) with the
-// element size over R.
-void write_case(const fs::path& study, const CaseKey& k, double peak, double impulse,
-                double duration, double first_contact, double h_rel) {
-  const fs::path dir = case_dir(study, k);
-  fs::create_directories(dir);
-  std::ofstream(dir / "summary.json") << OJson{
-      {"status", "ok"},
-      {"peak_force", peak},
-      {"impulse", impulse},
-      {"contact_duration", duration},
-      {"first_contact_time", first_contact}}.dump();
-  std::ofstream(dir / "case.json") << OJson{
-      {"start_gap", 1e-4},
-      {"cpu_seconds", 10.0 * k.level},
-      {"element_size_rel", h_rel}}.dump();
-}
-
 // The source levels at h = 0.08, 0.04, 0.02 R converging as L + c h^p per metric (p = 1.5 in
 // peak force, 2 in impulse, 1 in duration), the doubled patch's levels offset by a constant.
 constexpr double kPeak = 1000, kImpulse = 0.5, kDuration = 1e-4, kFirstContact = 5e-5;
@@ -136,12 +116,23 @@ fs::path write_source_study(const StudyDef& def, const std::string& name, double
   const fs::path dir = scratch(name);
   for (const CaseKey& k : plan_source_cases(def)) {
     const double h = kSizes[k.level - 1], shift = k.source_patch == 2 ? 1 + kPatchOffset : 1;
-    write_case(dir, k, kPeak * shift + 3000 * std::pow(h, peak_order), kImpulse * shift + 2 * h * h,
-               kDuration * shift + 1e-4 * h, kFirstContact + 1e-7 * h, h);
+    test::write_case(dir, k,
+                     {.peak = kPeak * shift + 3000 * std::pow(h, peak_order),
+                      .impulse = kImpulse * shift + 2 * h * h,
+                      .duration = kDuration * shift + 1e-4 * h,
+                      .first_contact = kFirstContact + 1e-7 * h,
+                      .cpu_seconds = 10.0 * k.level,
+                      .element_size_rel = h});
   }
   // The sphere, 5 % above the reference in peak force, 2 % below in impulse.
   for (const CaseKey& k : plan_cases(def))
-    write_case(dir, k, 1.05 * kPeak, 0.98 * kImpulse, kDuration, kFirstContact, 0);
+    test::write_case(dir, k,
+                     {.peak = 1.05 * kPeak,
+                      .impulse = 0.98 * kImpulse,
+                      .duration = kDuration,
+                      .first_contact = kFirstContact,
+                      .cpu_seconds = 10.0 * k.level,
+                      .element_size_rel = 0});
   return dir;
 }
 

@@ -12,6 +12,7 @@
 
 #include "solver/core/error.hpp"
 #include "study/tables/tables.hpp"
+#include "tests/study/case_files.hpp"
 
 namespace asperity::study::tables {
 namespace {
@@ -25,10 +26,7 @@ std::string read_text(const fs::path& file) {
 }
 
 fs::path scratch(const std::string& name) {
-  const fs::path dir = fs::temp_directory_path() / ("asperity_study_tables_" + name);
-  fs::remove_all(dir);
-  fs::create_directories(dir);
-  return dir;
+  return test::scratch("study_tables", name);
 }
 
 TEST(PublishedStudy, ReadsZhangZsakiFigures) {
@@ -164,21 +162,6 @@ TEST(Richardson, NonMonotoneThreeLevelsFallBackToTheBracket) {
 // resolution that was refined, on hand-made case folders with known values.
 namespace geometry_term_tests {
 
-// A finished case: case.json (the done marker, with the study's facts) and summary.json with the
-// measures.
-void write_case(const fs::path& study, const CaseKey& k, double peak, double impulse,
-                double duration) {
-  const fs::path dir = study / "cases" / k.particle / k.dir_name();
-  fs::create_directories(dir);
-  std::ofstream(dir / "summary.json") << OJson{
-      {"status", "ok"},
-      {"peak_force", peak},
-      {"impulse", impulse},
-      {"contact_duration", duration},
-      {"first_contact_time", 5e-5}}.dump();
-  std::ofstream(dir / "case.json") << OJson{{"start_gap", 1e-4}, {"cpu_seconds", 1.0}}.dump();
-}
-
 // Two refined levels at h = 0.08 and 0.04 R (sizes halving): the limit is the middle of the
 // extrapolations at orders 1.2 and 2.7 (docs/study.md), written out here, not via richardson().
 double two_level_limit(double coarse_h, double fine_h) {
@@ -210,7 +193,10 @@ fs::path write_study(const StudyDef& def, const std::string& name) {
   for (const CaseKey& k : plan_cases(def)) {
     // impulse and duration move with the level too, by other fractions
     const double peak = peak_of(k.resolution, k.level);
-    write_case(dir, k, peak, 1e-4 * peak * (1 + 0.01 * k.level), 1e-4 * (1 + 0.1 * k.level));
+    test::write_case(dir, k,
+                     {.peak = peak,
+                      .impulse = 1e-4 * peak * (1 + 0.01 * k.level),
+                      .duration = 1e-4 * (1 + 0.1 * k.level)});
   }
   return dir;
 }

@@ -31,12 +31,13 @@ ROOT = pathlib.Path(__file__).resolve().parents[2]
 
 
 def sphere_cases(exe):
-    """The case files some sphere peer's gate runs or refuses: `asperity crosscheck --list`, which
-    applies validation/peer_policy.json (the one place that says which cases the peers take)."""
+    """The case files some sphere peer's gate runs or refuses (not YADE's polyhedra gates):
+    `asperity crosscheck --list`, which applies validation/peer_policy.json (the one place that
+    says which cases the peers take)."""
     out = subprocess.run([exe, "crosscheck", "--list", "--peer", "yade,lammps,liggghts"], check=True,
                          capture_output=True, text=True).stdout
     return {pathlib.Path(line.split("\t")[2]).resolve() for line in out.splitlines()
-            if line and not line.startswith("#")}
+            if line.startswith(("run\t", "refused\t"))}
 
 
 def main(argv):

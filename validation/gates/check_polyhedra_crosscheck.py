@@ -1,5 +1,6 @@
 """Asserts a polyhedra cross-check's comparison.json: impulse, peak force and contact duration
-within their own tolerances (validation/gates/CMakeLists.txt gives the reasons), both runs ok."""
+within their own tolerances (validation/peer_policy.json, peers.yade.polyhedra, gives them and
+their reasons; peer_gates.cmake passes them), both runs ok."""
 import argparse
 import json
 import sys

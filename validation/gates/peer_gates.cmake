@@ -1,7 +1,8 @@
-# Writes OUT, the sphere peers' gates as tests (validation/gates/CMakeLists.txt includes it into
-# ctest), from `ASPERITY crosscheck --list --peer PEERS` (validation/peer_policy.json decides;
-# this script only loops). Usage: cmake -DASPERITY=... -DPEERS=yade,lammps,liggghts -DCASES=DIR
-# -DBINARY_DIR=DIR -DOUT=FILE -P peer_gates.cmake
+# Writes OUT, the peers' gates as tests (validation/gates/CMakeLists.txt includes it into ctest),
+# from `ASPERITY crosscheck --list --peer PEERS` (validation/peer_policy.json decides; this script
+# only loops). A polyhedra gate runs the cross-check, then CHECK_POLYHEDRA on its comparison.json.
+# Usage: cmake -DASPERITY=... -DPEERS=yade,lammps,liggghts -DCASES=DIR -DBINARY_DIR=DIR
+# -DCHECK_POLYHEDRA=check_polyhedra_crosscheck.py -DOUT=FILE -P peer_gates.cmake
 execute_process(COMMAND ${ASPERITY} crosscheck --list --peer ${PEERS} --cases ${CASES}
                 OUTPUT_VARIABLE text ERROR_VARIABLE error RESULT_VARIABLE status)
 if(NOT status EQUAL 0)
@@ -19,7 +20,7 @@ foreach(line IN LISTS lines)
   if(line STREQUAL "")
     continue()
   endif()
-  if(NOT line MATCHES "^(run|refused)\t([^\t]+)\t([^\t]+)\t([^\t]+)\t([^\t]+)\t")
+  if(NOT line MATCHES "^(run|refused|polyhedra)\t([^\t]+)\t([^\t]+)\t([^\t]+)\t([^\t]+)\t")
     message(FATAL_ERROR "asperity crosscheck --list: a line it should not print: ${line}")
   endif()
   set(kind ${CMAKE_MATCH_1})
@@ -38,6 +39,16 @@ foreach(line IN LISTS lines)
            " --peer ${peer} --out \"${out}\" --quiet)\n"
            "set_tests_properties(\"${peer}.refused.${case_name}\" PROPERTIES LABELS \"${label}\""
            " PASS_REGULAR_EXPRESSION \"${value}\")\n")
+  elseif(kind STREQUAL "polyhedra")
+    if(NOT value MATCHES "^([^ ]+) \\(impulse ([^,]+), peak_force ([^,]+), contact_duration ([^)]+)\\)$")
+      message(FATAL_ERROR "asperity crosscheck --list: a polyhedra line without its tolerances: ${line}")
+    endif()
+    string(APPEND tests
+           "add_test(\"${peer}.${case_name}\" sh -c \"\\\"$0\\\" crosscheck \\\"$1\\\" --out \\\"$2\\\""
+           " --max-rel-diff ${CMAKE_MATCH_1} --quiet && python3 \\\"$3\\\" \\\"$2/comparison.json\\\""
+           " --impulse ${CMAKE_MATCH_2} --peak ${CMAKE_MATCH_3} --duration ${CMAKE_MATCH_4}\""
+           " \"${ASPERITY}\" \"${case_file}\" \"${out}\" \"${CHECK_POLYHEDRA}\")\n"
+           "set_tests_properties(\"${peer}.${case_name}\" PROPERTIES LABELS \"${label}\")\n")
   else()
     string(APPEND tests
            "add_test(\"${peer}.${case_name}\" \"${ASPERITY}\" crosscheck \"${case_file}\""
