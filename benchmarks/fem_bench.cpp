@@ -88,6 +88,10 @@ BENCHMARK(BM_ContactKernel)->Arg(0)->Arg(1);
 #if ASPERITY_HAVE_GEOMETRY
 const Material kRock{.name = "rock", .density = 2650, .young = 5e10, .poisson = 0.25};
 
+// Coulomb friction of both bodies of the collisions (--friction=MU; 0 by default, as the set's
+// survey in reports/fem/collision_cost.md ran).
+double g_friction = 0;
+
 // The contact's share of the step the collisions run with: 0, α = 10 as the WorldDef gives it;
 // 2, what a scene that leaves the penalty to the solver gets (contact.max_contact_factor 2 met by
 // face-penalty, run/run_fdem.cpp). Set by --scene-default.
@@ -99,15 +103,17 @@ fdem::WorldDef collision_def(const TetMesh& mesh) {
   fdem::WorldDef def;
   TetMesh m = mesh;
   m.nodes.row(2).array() += 0.0002 - m.nodes.row(2).minCoeff();
+  Material rock = kRock;
+  rock.friction = g_friction;
   def.bodies.push_back({.name = "rock",
                         .kind = fdem::BodyKind::deformable,
                         .mesh = m,
-                        .material = kRock,
+                        .material = rock,
                         .velocity = Vec3(0, 0, -1)});
   def.bodies.push_back({.name = "block",
                         .kind = fdem::BodyKind::fixed,
                         .mesh = fdem::box_mesh(Vec3(-0.1, -0.1, -0.05), Vec3(0.1, 0.1, 0), 1, 1, 1),
-                        .material = kRock});
+                        .material = rock});
   def.contact.max_contact_factor = g_contact_factor;
   def.contact.contact_step_fix = fdem::ContactStepFix::face_penalty;
   return def;
@@ -217,9 +223,8 @@ void BM_CollisionSetup(benchmark::State& state, geometry::ParticleDef pd) {
   state.counters["tets"] = static_cast<double>(mesh.tets.cols());
 }
 
-void register_set(int count) {
-  const io::Json set =
-      io::read_json_file(std::string(ASPERITY_SOURCE_DIR) + "/data/particles/set.json");
+void register_set(int count, const std::string& file) {
+  const io::Json set = io::read_json_file(file);
   int k = 0;
   for (const io::Json& p : set.at("particles")) {
     if (k++ >= count) break;
@@ -251,18 +256,25 @@ void register_set(int count) {
 }  // namespace asperity
 
 // Google Benchmark's main, plus --set-particles=K (BM_CollisionSet and BM_CollisionSetup over the
-// first K particles of the set; default 2, "all" for every one) and --scene-default (the
-// collisions at the scene default's contact.max_contact_factor 2 by face-penalty instead of
-// α = 10 as the WorldDef gives it).
+// first K particles of the set; default 2, "all" for every one), --set-file=PATH (another particle
+// set, e.g. seeds outside the study's; default data/particles/set.json), --friction=MU (both
+// bodies' Coulomb coefficient; default 0) and --scene-default (the collisions at the scene
+// default's contact.max_contact_factor 2 by face-penalty instead of α = 10 as the WorldDef gives
+// it).
 int main(int argc, char** argv) {
 #if ASPERITY_HAVE_GEOMETRY
   int count = 2;
+  std::string set_file = std::string(ASPERITY_SOURCE_DIR) + "/data/particles/set.json";
   int kept = 1;
   for (int i = 1; i < argc; ++i) {
     const std::string a = argv[i];
     if (a.rfind("--set-particles=", 0) == 0) {
       const std::string v = a.substr(16);
       count = v == "all" ? 1 << 30 : std::stoi(v);
+    } else if (a.rfind("--set-file=", 0) == 0) {
+      set_file = a.substr(11);
+    } else if (a.rfind("--friction=", 0) == 0) {
+      asperity::g_friction = std::stod(a.substr(11));
     } else if (a == "--scene-default") {
       asperity::g_contact_factor = 2;
     } else {
@@ -270,7 +282,7 @@ int main(int argc, char** argv) {
     }
   }
   argc = kept;
-  asperity::register_set(count);
+  asperity::register_set(count, set_file);
 #endif
   benchmark::Initialize(&argc, argv);
   if (benchmark::ReportUnrecognizedArguments(argc, argv)) return 1;

@@ -6,10 +6,9 @@
 #include <limits>
 #include <sstream>
 
-#include <Eigen/Eigenvalues>
-
 #include "solver/core/central_difference.hpp"
 #include "solver/core/error.hpp"
+#include "solver/fem/largest_eigenvalue.hpp"
 
 namespace asperity::fem {
 
@@ -197,9 +196,7 @@ double split_eigenvalue(const Eigen::Matrix<double, 12, 12>& k, const double m[4
   Eigen::Matrix<double, 12, 1> s;
   for (int i = 0; i < 12; ++i) s[i] = m[i / 3] > 0 ? 1.0 / std::sqrt(m[i / 3]) : 0.0;
   const Eigen::Matrix<double, 12, 12> a = s.asDiagonal() * k * s.asDiagonal();
-  return Eigen::SelfAdjointEigenSolver<Eigen::Matrix<double, 12, 12>>(a, Eigen::EigenvaluesOnly)
-      .eigenvalues()
-      .maxCoeff();
+  return largest_eigenvalue(a);
 }
 
 // The same λ_max for an element with no extra stiffness, in closed form. With S = M^-½ and

@@ -90,12 +90,8 @@ bool separated(const std::array<Vec3, NA>& a, const std::array<Vec3, NB>& b, dou
     for (const Vec3& p : b) bmin = std::min(bmin, p.dot(axis)), bmax = std::max(bmax, p.dot(axis));
     return amax <= bmin + tol * len || bmax <= amin + tol * len;
   };
-  std::vector<Vec3> ea, eb;
-  for (int i = 0; i < NA; ++i)
-    for (int j = i + 1; j < NA; ++j) ea.push_back(a[j] - a[i]);
-  for (int i = 0; i < NB; ++i)
-    for (int j = i + 1; j < NB; ++j) eb.push_back(b[j] - b[i]);
-  // Faces: every three points (a triangle has one, a tetrahedron four).
+  // Faces: every three points (a triangle has one, a tetrahedron four). Most pairs the lifting
+  // tests lie far apart and part on the first face normal, so the edges are taken only after.
   for (int i = 0; i < NA; ++i)
     for (int j = i + 1; j < NA; ++j)
       for (int k = j + 1; k < NA; ++k)
@@ -104,6 +100,15 @@ bool separated(const std::array<Vec3, NA>& a, const std::array<Vec3, NB>& b, dou
     for (int j = i + 1; j < NB; ++j)
       for (int k = j + 1; k < NB; ++k)
         if (apart((b[j] - b[i]).cross(b[k] - b[i]))) return true;
+  // Edges in a fixed array (no allocation: this runs for every face against every candidate).
+  std::array<Vec3, NA*(NA - 1) / 2> ea;
+  std::array<Vec3, NB*(NB - 1) / 2> eb;
+  int n = 0;
+  for (int i = 0; i < NA; ++i)
+    for (int j = i + 1; j < NA; ++j) ea[n++] = a[j] - a[i];
+  n = 0;
+  for (int i = 0; i < NB; ++i)
+    for (int j = i + 1; j < NB; ++j) eb[n++] = b[j] - b[i];
   for (const Vec3& u : ea)
     for (const Vec3& v : eb)
       if (apart(u.cross(v))) return true;
