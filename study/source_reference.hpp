@@ -20,7 +20,7 @@ struct SourceReferenceOptions {
   // The rest of the surface at the density of a particle of this many triangles.
   long far_faces = 2000;
   int levels = 3;              // refined levels, h halving from one to the next
-  double elements_across = 3;  // the finest h is Hertz's contact radius at peak over this
+  double elements_across = 3;  // the finest h: at most Hertz's contact radius at peak over this
 };
 
 struct SourceReferencePlan {
