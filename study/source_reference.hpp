@@ -43,14 +43,14 @@ struct SourceReferencePlan {
 // rigid block) of `particle`'s material at `speed` (m/s): Hertz's impact of a sphere of the
 // local radius and the particle's mass on a rigid half-space (Johnson 1985, §11.4:
 // δ = (15 m v² / (16 E* √R))^{2/5}, a = √(R δ), E* = E/(1 − ν²)), the finest size
-// a / elements_across and each coarser level twice the next, all of them halved again until the
-// coarsest is no larger than contact_edge: the surface is bisected only where the element size
-// is below its triangles (geometry::subdivide_surface), so a level coarser than the source's own
-// triangles refines the interior alone and the contact surface stays the source's fan. On
-// ballast_01 (a = 2.19 mm, source edges 1.46–1.61 mm there) the levels a/0.75, a/1.5, a/3 put 7,
-// 23 and 77 surface vertices within a (mean surface edge a/1.5, a/2.45, a/4.4: ratios 1.64 and
-// 1.78, not 2) and the peak force fell at an observed order of 0.24; docs/study.md, "Why
-// ballast_01's reference converged at 0.24".
+// a / elements_across and each coarser level twice the next; where contact_edge is over √2 times
+// that finest size, all of them halved again until the coarsest is no larger than it: the surface
+// is bisected only where the element size is below its triangles (geometry::subdivide_surface), so
+// a level coarser than the source's own triangles refines the interior alone and the contact
+// surface stays the source's fan. On ballast_01 (a = 2.19 mm, source edges 1.46–1.61 mm there) the
+// levels a/0.75, a/1.5, a/3 put 7, 23 and 77 surface vertices within a (mean surface edge a/1.5,
+// a/2.45, a/4.4: ratios 1.64 and 1.78, not 2) and the peak force fell at an observed order of 0.24;
+// docs/study.md, "Why ballast_01's reference converged at 0.24".
 SourceReferencePlan plan_source_reference(const SurfaceMesh& source, const Material& particle,
                                           double speed, const SourceReferenceOptions& options);
 

@@ -9,7 +9,9 @@
 #include <cstdio>
 #include <vector>
 
+#include "solver/geometry/geodesic_sphere.hpp"
 #include "solver/geometry/random_particle.hpp"
+#include "solver/geometry/refined_sphere.hpp"
 #include "study/source_reference.hpp"
 #include "study/tables/study_cases.hpp"
 
@@ -149,6 +151,8 @@ TEST(SourceReferencePlan, EveryLevelRefinesTheSourcesOwnTrianglesAtTheContact) {
     ASSERT_EQ(plan.sizes.size(), 3u) << faces;
     const double ladder = plan.contact_radius / options.elements_across;  // the finest asked for
     EXPECT_GT(plan.contact_edge, 0) << faces;
+    // Both sources here are coarser than the finest size (ballast-like, 20 480 or 1280 faces).
+    ASSERT_GT(plan.contact_edge, std::sqrt(2.0) * ladder) << faces;
     EXPECT_LE(plan.sizes.front(), plan.contact_edge) << faces;
     EXPECT_TRUE(2 * plan.sizes.front() > plan.contact_edge ||
                 std::abs(plan.sizes.back() - ladder) <= kRoundOff * ladder)
@@ -163,6 +167,30 @@ TEST(SourceReferencePlan, EveryLevelRefinesTheSourcesOwnTrianglesAtTheContact) {
                 plan.contact_radius / plan.contact_edge, plan.contact_radius / plan.sizes.front(),
                 plan.contact_radius / plan.sizes.back());
   }
+}
+
+// A source finer than the finest size at the contact keeps the ladder a/elements_across · (4, 2,
+// 1): the sphere of SphereStudy.SourceReferenceConvergesTowardsTheFiniteSphere (a 25 mm icosphere
+// bisected to 0.0167 R facets within 0.15 R of its lowest vertex, its levels' order 2.95 so), whose
+// every level has its own fine triangles across the contact; halving it would cost 8-10 times more
+// for nothing.
+TEST(SourceReferencePlan, ASourceFinerThanTheFinestLevelKeepsTheLadder) {
+  constexpr double kRadius = 0.025;
+  SurfaceMesh ico = geometry::geodesic_sphere(8);
+  ico.vertices *= kRadius;
+  const SurfaceMesh source = geometry::refined_sphere(8, kRadius, 0.0167 * kRadius, 0.15 * kRadius,
+                                                      geometry::lowest_vertex(ico));
+  const Material rock{.name = "rock", .density = 2650, .young = 50e9, .poisson = 0.3};
+  const SourceReferenceOptions options{};
+  const SourceReferencePlan plan = plan_source_reference(source, rock, 1.25, options);
+  const double ladder = plan.contact_radius / options.elements_across;
+  EXPECT_LE(plan.contact_edge, std::sqrt(2.0) * ladder);
+  ASSERT_EQ(plan.sizes.size(), 3u);
+  EXPECT_NEAR(plan.sizes.back(), ladder, kRoundOff * ladder);
+  EXPECT_NEAR(plan.sizes.front(), 4 * ladder, kRoundOff * ladder);
+  std::printf("sphere: a %.4g R, contact edge %.4g R (a/%.3g), finest a/%.3g\n",
+              plan.contact_radius / kRadius, plan.contact_edge / kRadius,
+              plan.contact_radius / plan.contact_edge, plan.contact_radius / plan.sizes.back());
 }
 
 }  // namespace
