@@ -24,10 +24,10 @@ namespace asperity::app {
 namespace {
 namespace fs = std::filesystem;
 
-// The least CPU one reference has cost (its two refined fem cases at 2000 triangles, 0.08 and
-// 0.04 R, 12.5 s each at the cheapest of the wide study's 8 particles, docs/study.md "The wider
-// study"): a budget below it cannot finish one orientation.
-constexpr double kReferenceCpuMin = 25.0;
+// The least CPU one reference has cost: the source reference's three levels on the contact-local
+// surface, 126-597 s per particle and orientation over the 14 measured (docs/study.md, "The source
+// reference"): a budget below it cannot finish one orientation.
+constexpr double kReferenceCpuMin = 126.0;
 
 struct AdviseArgs {
   fs::path mesh, out;

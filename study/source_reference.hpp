@@ -20,7 +20,7 @@ struct SourceReferenceOptions {
   // The rest of the surface at the density of a particle of this many triangles.
   long far_faces = 2000;
   int levels = 3;              // refined levels, h halving from one to the next
-  double elements_across = 3;  // the finest h is Hertz's contact radius at peak over this
+  double elements_across = 3;  // the finest h: at most Hertz's contact radius at peak over this
 };
 
 struct SourceReferencePlan {
@@ -32,6 +32,10 @@ struct SourceReferencePlan {
   double local_radius = 0;
   double contact_radius = 0;  // Hertz's a at peak on local_radius, the block rigid, m
   double peak_force = 0;      // Hertz's peak on local_radius, N (sets only the sizes' scale)
+  // The mean length of the source's edges that touch a vertex within contact_radius of the
+  // strike point (the strike point's fan always among them), m: the source's own triangles at
+  // the contact, which the mesher keeps where the element size is larger than them.
+  double contact_edge = 0;
   std::vector<double> sizes;  // element sizes at the strike point, m, descending (halving)
 };
 
@@ -39,7 +43,14 @@ struct SourceReferencePlan {
 // rigid block) of `particle`'s material at `speed` (m/s): Hertz's impact of a sphere of the
 // local radius and the particle's mass on a rigid half-space (Johnson 1985, §11.4:
 // δ = (15 m v² / (16 E* √R))^{2/5}, a = √(R δ), E* = E/(1 − ν²)), the finest size
-// a / elements_across and each coarser level twice the next.
+// a / elements_across and each coarser level twice the next; where contact_edge is over √2 times
+// that finest size, all of them halved again until the coarsest is no larger than it: the surface
+// is bisected only where the element size is below its triangles (geometry::subdivide_surface), so
+// a level coarser than the source's own triangles refines the interior alone and the contact
+// surface stays the source's fan. On ballast_01 (a = 2.19 mm, source edges 1.46–1.61 mm there) the
+// levels a/0.75, a/1.5, a/3 put 7, 23 and 77 surface vertices within a (mean surface edge a/1.5,
+// a/2.45, a/4.4: ratios 1.64 and 1.78, not 2) and the peak force fell at an observed order of 0.24;
+// docs/study.md, "Why ballast_01's reference converged at 0.24".
 SourceReferencePlan plan_source_reference(const SurfaceMesh& source, const Material& particle,
                                           double speed, const SourceReferenceOptions& options);
 

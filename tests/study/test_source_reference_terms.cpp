@@ -1,12 +1,17 @@
-// The source reference's terms (study/source_reference.hpp): the Richardson limit of the levels
+// The source reference's plan and terms (study/source_reference.hpp): the levels' sizes against
+// the source's own triangles at the contact; the Richardson limit of the levels
 // on the patch, the patch check's change (the doubled patch's levels extrapolated with the
 // patch's order and weight) and the uncertainty, on synthetic level sequences whose order, limit
 // and offset are known, so every number asserted is exact to round-off.
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <cstdio>
 #include <vector>
 
+#include "solver/geometry/geodesic_sphere.hpp"
+#include "solver/geometry/random_particle.hpp"
+#include "solver/geometry/refined_sphere.hpp"
 #include "study/source_reference.hpp"
 #include "study/tables/study_cases.hpp"
 
@@ -122,6 +127,70 @@ TEST(SourceReferenceTerms, ASlowlyConvergingReferenceCarriesItsDistanceToTheLimi
   // A sequence at an observed order keeps richardson's error unchanged.
   const SourceReference q = source_reference(kSizes, levels(1000, 4000, 1.3), {});
   EXPECT_DOUBLE_EQ(q.peak_force.discretization, q.peak_force.limit.error);
+}
+
+// The plan's sizes on two generated particles whose contact spans different numbers of source
+// triangles (20 480 and 1280 faces, the set's shape numbers): every level at most the source's
+// own edge at the contact, so each refines the contact surface (the mesher bisects the surface
+// only where the size is below its triangles; ballast_01's a/0.75 level left the strike point's
+// fan of 7 vertices as the whole contact: docs/study.md); the coarsest no finer than needed (the
+// next coarser would exceed that edge, or it is the a/elements_across ladder itself); the finest
+// at most a/3 (issue 28: at least 3 elements across Hertz's contact radius at peak); halving.
+TEST(SourceReferencePlan, EveryLevelRefinesTheSourcesOwnTrianglesAtTheContact) {
+  const Material rock{.name = "rock", .density = 2650, .young = 50e9, .poisson = 0.25};
+  for (long faces : {20480L, 1280L}) {
+    const SurfaceMesh source = geometry::random_particle({.seed = 7321,
+                                                          .size = 0.05,
+                                                          .elongation = 0.8,
+                                                          .flatness = 0.8,
+                                                          .angularity = 0.8,
+                                                          .roughness = 0.15,
+                                                          .faces = faces});
+    const SourceReferenceOptions options{};
+    const SourceReferencePlan plan = plan_source_reference(source, rock, 2.0, options);
+    ASSERT_EQ(plan.sizes.size(), 3u) << faces;
+    const double ladder = plan.contact_radius / options.elements_across;  // the finest asked for
+    EXPECT_GT(plan.contact_edge, 0) << faces;
+    // Both sources here are coarser than the finest size (ballast-like, 20 480 or 1280 faces).
+    ASSERT_GT(plan.contact_edge, std::sqrt(2.0) * ladder) << faces;
+    EXPECT_LE(plan.sizes.front(), plan.contact_edge) << faces;
+    EXPECT_TRUE(2 * plan.sizes.front() > plan.contact_edge ||
+                std::abs(plan.sizes.back() - ladder) <= kRoundOff * ladder)
+        << faces << ": coarsest " << plan.sizes.front() << " m, contact edge " << plan.contact_edge
+        << " m";
+    EXPECT_LE(plan.sizes.back(), ladder * (1 + kRoundOff)) << faces;
+    for (std::size_t k = 1; k < plan.sizes.size(); ++k) {
+      EXPECT_NEAR(plan.sizes[k - 1], 2 * plan.sizes[k], kRoundOff * plan.sizes[k]) << faces;
+    }
+    std::printf("%ld faces: a %.4g m, contact edge %.4g m (a/%.3g), sizes a/%.3g .. a/%.3g\n",
+                faces, plan.contact_radius, plan.contact_edge,
+                plan.contact_radius / plan.contact_edge, plan.contact_radius / plan.sizes.front(),
+                plan.contact_radius / plan.sizes.back());
+  }
+}
+
+// A source finer than the finest size at the contact keeps the ladder a/elements_across · (4, 2,
+// 1): the sphere of SphereStudy.SourceReferenceConvergesTowardsTheFiniteSphere (a 25 mm icosphere
+// bisected to 0.0167 R facets within 0.15 R of its lowest vertex, its levels' order 2.95 so), whose
+// every level has its own fine triangles across the contact; halving it would cost 8-10 times more
+// for nothing.
+TEST(SourceReferencePlan, ASourceFinerThanTheFinestLevelKeepsTheLadder) {
+  constexpr double kRadius = 0.025;
+  SurfaceMesh ico = geometry::geodesic_sphere(8);
+  ico.vertices *= kRadius;
+  const SurfaceMesh source = geometry::refined_sphere(8, kRadius, 0.0167 * kRadius, 0.15 * kRadius,
+                                                      geometry::lowest_vertex(ico));
+  const Material rock{.name = "rock", .density = 2650, .young = 50e9, .poisson = 0.3};
+  const SourceReferenceOptions options{};
+  const SourceReferencePlan plan = plan_source_reference(source, rock, 1.25, options);
+  const double ladder = plan.contact_radius / options.elements_across;
+  EXPECT_LE(plan.contact_edge, std::sqrt(2.0) * ladder);
+  ASSERT_EQ(plan.sizes.size(), 3u);
+  EXPECT_NEAR(plan.sizes.back(), ladder, kRoundOff * ladder);
+  EXPECT_NEAR(plan.sizes.front(), 4 * ladder, kRoundOff * ladder);
+  std::printf("sphere: a %.4g R, contact edge %.4g R (a/%.3g), finest a/%.3g\n",
+              plan.contact_radius / kRadius, plan.contact_edge / kRadius,
+              plan.contact_radius / plan.contact_edge, plan.contact_radius / plan.sizes.back());
 }
 
 }  // namespace
