@@ -1,9 +1,9 @@
 // The CalculiX adapter (Debian's calculix-ccx 2.20, `ccx`, meshed by Debian's gmsh): a deformable
-// sphere (a `fem` body whose surface is a sphere) striking a fixed plane or box face head-on,
-// frictionless (docs/crosscheck.md, "CalculiX"). scene_to_calculix.py meshes the sphere with gmsh
-// at the scene's element-size keys (graded to the strike point), writes the deck (4-node
-// tetrahedra, node-to-face penalty contact on a fixed block, implicit *DYNAMIC), runs ccx and
-// reads back the contact force and the strike point's penetration every increment.
+// `fem` body (a sphere, or any closed surface: a particle) striking a fixed plane or box face
+// head-on, frictionless (docs/crosscheck.md, "CalculiX"). scene_to_calculix.py meshes the body
+// with gmsh at the scene's element-size keys (graded to the strike point), writes the deck
+// (4-node tetrahedra, node-to-face penalty contact on a fixed block, implicit *DYNAMIC), runs ccx
+// and reads back the contact force and the strike point's penetration every increment.
 //
 // What differs from the other peers, and why:
 //   step        ccx's own, implicit: T_H/kIncrementsPerHertzTime (asperity's explicit step, about
@@ -12,15 +12,19 @@
 //               measured at a/R = 0.15, s = 1)
 //   end         asperity's end time, or 1.2 T_H after the first touch when that is sooner (the
 //               finite sphere's contact is shorter than Hertz's: docs/physics.md, point 6)
-//   surface     the exact sphere through the file's vertices (gmsh's OpenCASCADE sphere), not the
-//               file's facets: a smooth surface is what both codes converge to
-//   symmetry    quarter (the two vertical planes through the strike point): the scene must be
-//               head-on, spin-free and graded to a focus on the axis; anything else is refused
+//   surface     a sphere's: the exact sphere through the file's vertices (gmsh's OpenCASCADE
+//               sphere), not the file's facets: a smooth surface is what both codes converge to.
+//               Any other surface's: the file's facets, each a plane surface of gmsh, so both
+//               codes mesh the same polyhedron (asperity bisects the facets in their planes)
+//   symmetry    a sphere: quarter (the two vertical planes through the strike point), the focus
+//               on the axis; a particle: none, the whole body (it has no plane of symmetry)
 //   penalty     ccx's linear pressure-overclosure law, slope kPenaltyFactor·E/h (h the element
 //               size at the strike point): the layer takes p0 h / (kPenaltyFactor E) of the
 //               approach, 0.5 % at a/R = 0.107 and h = 4 mm, and falls with h
-//   motion      the sphere's centre from the momentum balance of the meshed mass under the
-//               contact force and gravity (ccx prints no body motion)
+//   motion      the body's centroid from the momentum balance of the meshed mass under the
+//               contact force and gravity (ccx prints no body motion); a particle's spin from
+//               its angular impulse, the force at the strike node, over the meshed inertia
+#include <array>
 #include <cmath>
 #include <fstream>
 #include <numbers>
@@ -52,11 +56,15 @@ Json vec(const Vec3& v) {
   return Json::array({v.x(), v.y(), v.z()});
 }
 
-// The sphere a fem body's surface is: its centre in the body's placement and its radius.
-struct Sphere {
-  Vec3 centre = Vec3::Zero();  // m, where the scene places it
+// The fem body as placed: a sphere (its centre and radius) or any other closed surface (its
+// volume centroid, its placed vertices and triangles, its volume-equivalent radius).
+struct Body {
+  bool sphere = true;
+  Vec3 centre = Vec3::Zero();  // m, the sphere's centre or the surface's centroid, placed
   std::optional<Vec3> focus;   // m, the element size's focus, placed likewise (none: uniform)
-  double radius = 0;
+  double radius = 0;           // m, the sphere's; a surface's (3V/4π)^{1/3}
+  Eigen::Matrix3Xd points;     // m, a surface's vertices, placed
+  std::vector<std::array<int, 3>> triangles;  // outward, a surface's polygons as fans
 };
 
 // The fixed plane the sphere strikes: a point on it and its unit normal into the free side.
@@ -66,7 +74,7 @@ struct Target {
 
 struct Problem {
   int ball = -1, target = -1;
-  Sphere sphere;
+  Body body;
   Target plane;
 };
 
@@ -75,8 +83,8 @@ std::string at_body(const scene::SceneDef& s, std::size_t k) {
 }
 
 // The surface's volume centroid (the point the scene places at `position`) and the sphere through
-// its vertices, or the reason it is not one.
-Sphere sphere_of(const scene::SceneDef& s, std::size_t k) {
+// its vertices, or the placed surface when it is not one.
+Body body_of(const scene::SceneDef& s, std::size_t k) {
   const scene::BodyDef& b = s.bodies[k];
   const auto& shape = std::get<scene::MeshShape>(b.shape);
   const geometry::PolygonSoup soup = geometry::read_mesh_file(shape.file, {.scale = shape.scale});
@@ -108,19 +116,31 @@ Sphere sphere_of(const scene::SceneDef& s, std::size_t k) {
   double worst = 0;
   for (Eigen::Index i = 0; i < nv; ++i)
     worst = std::max(worst, std::abs((soup.points.col(i) - mid).norm() - r) / r);
-  if (!(worst <= kSphereTolerance)) {
-    throw InputError(at_body(s, k) +
-                     "shape.file: calculix: the surface is not a sphere (a vertex " +
-                     std::to_string(worst * 100) +
-                     " % of the radius off the sphere through the others): the CalculiX peer "
-                     "meshes spheres only");
-  }
   const Vec3 placed = b.position - centroid;
-  return {.centre = mid + placed,
-          .focus = shape.element_size_focus
-                       ? std::optional<Vec3>(*shape.element_size_focus + placed)
-                       : std::nullopt,
-          .radius = r};
+  const std::optional<Vec3> focus = shape.element_size_focus
+                                        ? std::optional<Vec3>(*shape.element_size_focus + placed)
+                                        : std::nullopt;
+  if (worst <= kSphereTolerance)
+    return {.sphere = true, .centre = mid + placed, .focus = focus, .radius = r};
+  // Not a sphere: the whole surface, as the file gives it (the scene's `faces` would simplify
+  // it in asperity, a surface the deck does not see).
+  std::size_t triangles = 0;
+  for (const std::vector<int>& poly : soup.polygons) triangles += poly.size() - 2;
+  if (shape.faces > 0 && static_cast<std::size_t>(shape.faces) != triangles) {
+    throw InputError(
+        at_body(s, k) + "shape.faces: calculix: meshes the file's " + std::to_string(triangles) +
+        " triangles as they are, not a simplification to " + std::to_string(shape.faces) +
+        " (simplify the file first: asperity mesh FILE --faces N --no-tets)");
+  }
+  Body out{.sphere = false,
+           .centre = b.position,
+           .focus = focus,
+           .radius = std::cbrt(3 * volume / (4 * std::numbers::pi)),
+           .points = soup.points.colwise() + placed};
+  for (const std::vector<int>& poly : soup.polygons)
+    for (std::size_t i = 1; i + 1 < poly.size(); ++i)
+      out.triangles.push_back({poly[0], poly[i], poly[i + 1]});
+  return out;
 }
 
 // Throws InputError naming the key and the reason for anything the deck cannot express.
@@ -142,12 +162,12 @@ Problem problem(const scene::SceneDef& s) {
     } else {
       if (p.ball >= 0 || b.model != scene::Model::fem ||
           !std::holds_alternative<scene::MeshShape>(b.shape))
-        throw InputError(at_body(s, k) + "calculix: one moving fem body (the sphere) only");
+        throw InputError(at_body(s, k) + "calculix: one moving fem body only");
       p.ball = static_cast<int>(k);
     }
   }
   if (p.ball < 0 || p.target < 0)
-    throw InputError(where + "bodies: calculix: a moving fem sphere and a fixed plane or box");
+    throw InputError(where + "bodies: calculix: a moving fem body and a fixed plane or box");
   const auto ball = static_cast<std::size_t>(p.ball);
   const scene::BodyDef& b = s.bodies[ball];
   const auto& mesh = std::get<scene::MeshShape>(b.shape);
@@ -166,7 +186,7 @@ Problem problem(const scene::SceneDef& s) {
   if (mu > 0)
     throw InputError(where + "friction: calculix: frictionless contact only (the friction is " +
                      std::to_string(mu) + ")");
-  p.sphere = sphere_of(s, ball);
+  p.body = body_of(s, ball);
   const scene::BodyDef& t = s.bodies[static_cast<std::size_t>(p.target)];
   const Vec3 v = b.velocity;
   if (const auto* pl = std::get_if<scene::PlaneShape>(&t.shape)) {
@@ -189,10 +209,10 @@ Problem problem(const scene::SceneDef& s) {
       b.angular_velocity.norm() > 0) {
     throw InputError(at_body(s, ball) +
                      "velocity: calculix: head-on only (the velocity along the target's normal, "
-                     "no spin): the deck is quarter-symmetric");
+                     "no spin)");
   }
-  const Vec3 axial = p.sphere.focus.value_or(p.sphere.centre) - p.sphere.centre;
-  if ((axial - axial.dot(n) * n).norm() > kAxisTolerance * p.sphere.radius + 1e-12) {
+  const Vec3 axial = p.body.focus.value_or(p.body.centre) - p.body.centre;
+  if (p.body.sphere && (axial - axial.dot(n) * n).norm() > kAxisTolerance * p.body.radius + 1e-12) {
     throw InputError(at_body(s, ball) +
                      "shape.element_size_focus: calculix: the focus must lie on the axis of the "
                      "impact (the deck is quarter-symmetric)");
@@ -222,15 +242,28 @@ PeerTrace run(const scene::SceneDef& s, const Resolved& r, const fs::path& exe, 
   if (gmsh.empty())
     throw PeerFailure("calculix: gmsh is not installed (the Debian package gmsh meshes the deck)");
   const Problem p = problem(s);
+  const Body& body = p.body;
   const scene::BodyDef& b = s.bodies[static_cast<std::size_t>(p.ball)];
   const Material& m = s.materials[static_cast<std::size_t>(b.material)];
   const auto& mesh = std::get<scene::MeshShape>(b.shape);
   const Vec3 n = p.plane.normal;
   const auto [e1, e2] = tangents(n);
-  const double radius = p.sphere.radius, speed = -b.velocity.dot(n);
-  const double gap = (p.sphere.centre - p.plane.point).dot(n) - radius;
-  const Vec3 origin = p.sphere.centre - (radius + gap) * n;
-  // Hertz's contact time against a rigid plane (Johnson 1985, §11.4), for the step and the end.
+  const double radius = body.radius, speed = -b.velocity.dot(n);
+  // The strike point: the sphere's pole, or the surface's vertex nearest the plane.
+  Vec3 strike = body.centre - radius * n;
+  if (!body.sphere) {
+    Eigen::Index lowest = 0;
+    (body.points.transpose() * n).minCoeff(&lowest);
+    strike = body.points.col(lowest);
+  }
+  const double gap = (strike - p.plane.point).dot(n);
+  const Vec3 origin = strike - gap * n;
+  const auto frame = [&](const Vec3& x) {
+    const Vec3 d = x - origin;
+    return Json::array({d.dot(e1), d.dot(e2), d.dot(n)});
+  };
+  // Hertz's contact time against a rigid plane (Johnson 1985, §11.4), for the step and the end
+  // (a particle's: its volume-equivalent sphere's, of the same mass).
   const double e_star = m.young / (1 - m.poisson * m.poisson);
   const double mass = m.density * 4.0 / 3.0 * std::numbers::pi * std::pow(radius, 3);
   const double overlap =
@@ -238,12 +271,18 @@ PeerTrace run(const scene::SceneDef& s, const Resolved& r, const fs::path& exe, 
   const double t_hertz = 2.9432 * overlap / speed;
   const double t_end =
       std::min(r.dt * static_cast<double>(r.steps), std::max(gap, 0.0) / speed + 1.2 * t_hertz);
-  const Vec3 focus = p.sphere.focus.value_or(origin) - origin;
+  // Uniform size (no focus): the sphere's old default, the point under it; a surface's, its strike.
+  const Json focus = frame(body.focus.value_or(body.sphere ? origin : strike));
   Json in{{"scene", s.name},
+          {"shape", body.sphere ? "sphere" : "surface"},
           {"radius", radius},
+          {"length", radius},
+          // The slave nodes: the surface within 0.4 R of the plane at the start (R the radius or
+          // the equivalent radius), above any approach these impacts reach (1-2 % of R).
+          {"slave_height", 0.4 * radius},
           {"gap", gap},
           {"speed", speed},
-          {"focus", {focus.dot(e1), focus.dot(e2), focus.dot(n)}},
+          {"focus", focus},
           {"size", mesh.element_size},
           {"focus_radius", mesh.element_size_focus ? mesh.element_size_focus_radius : 0.0},
           {"growth", mesh.element_size_focus ? mesh.element_size_growth : 0.0},
@@ -264,6 +303,14 @@ PeerTrace run(const scene::SceneDef& s, const Resolved& r, const fs::path& exe, 
           {"ccx", exe.string()},
           {"record", s.record.body == p.ball ? "ball" : "plane"},
           {"frame", {{"e1", vec(e1)}, {"e2", vec(e2)}, {"e3", vec(n)}, {"origin", vec(origin)}}}};
+  if (!body.sphere) {
+    Json points = Json::array(), triangles = Json::array();
+    for (Eigen::Index i = 0; i < body.points.cols(); ++i)
+      points.push_back(frame(body.points.col(i)));
+    for (const auto& t : body.triangles) triangles.push_back({t[0], t[1], t[2]});
+    in["points"] = std::move(points);
+    in["triangles"] = std::move(triangles);
+  }
   write_file(dir / "input.json", in.dump(2) + "\n");
   const std::string cmd = "python3 " + shell_quote(script.string()) + " " +
                           shell_quote((dir / "input.json").string()) + " " +
@@ -281,7 +328,8 @@ PeerTrace run(const scene::SceneDef& s, const Resolved& r, const fs::path& exe, 
   PeerTrace tr;
   if (mode == RunMode::trace) {
     tr = read_trace_csv(dir / "raw.csv", 1, "calculix", true);
-    tr.final_w.emplace_back(Vec3::Zero());  // quarter symmetry: no spin
+    const Json& w = raw.at("spin");  // the sphere's zero by symmetry
+    tr.final_w.emplace_back(w[0].get<double>(), w[1].get<double>(), w[2].get<double>());
   }
   tr.cpu_seconds = raw.at("cpu_seconds").get<double>();
   tr.wall_seconds = raw.at("wall_seconds").get<double>();
