@@ -1,5 +1,5 @@
-// Known answers for the study's curve measures: skewness, cross-correlation lag, classes and
-// quantiles.
+// Known answers for the study's curve measures: skewness, cross-correlation lag, classes,
+// quantiles and the Hertz contact time.
 #include <cmath>
 #include <cstddef>
 #include <numbers>
@@ -88,6 +88,15 @@ TEST(Quantile, Type7) {
   EXPECT_DOUBLE_EQ(quantile({3, 1, 2}, 0.5), 2.0);
   EXPECT_DOUBLE_EQ(quantile({1, 2, 3, 4}, 0.5), 2.5);
   EXPECT_DOUBLE_EQ(quantile({0, 10}, 0.9), 9.0);
+}
+
+TEST(HertzContactTime, GlassSphere) {
+  // 2.868 (m²/(R E*² v))^{1/5} for R = 1 cm, m = 2500·4/3πR³, E* = 30 GPa, v = 1 m/s
+  const double r = 0.01, m = 2500 * 4.0 / 3 * std::numbers::pi * r * r * r;
+  const double expected = 2.868 * std::pow(m * m / (r * 3e10 * 3e10 * 1.0), 0.2);
+  EXPECT_DOUBLE_EQ(hertz_contact_time(r, m, 3e10, 1.0), expected);
+  // slower impacts last longer: t ∝ v^(−1/5)
+  EXPECT_NEAR(hertz_contact_time(r, m, 3e10, 32.0) / expected, 0.5, 1e-12);
 }
 
 }  // namespace
