@@ -21,6 +21,7 @@
 #include <string>
 #include <vector>
 
+#include "solver/geometry/mesh_text.hpp"
 #include "solver/io/atomic_file.hpp"
 #include "solver/io/csv.hpp"
 #include "study/curve_measures.hpp"
@@ -68,17 +69,13 @@ std::vector<Row> read_rows(const std::string& file) {
   for (long n = 2; std::getline(in, line); ++n) {
     const std::vector<std::string> f = split(line);
     const auto number = [&](std::size_t i) {
-      std::size_t used = 0;
-      double v = std::nan("");
-      try {
-        if (i < f.size()) v = std::stod(f[i], &used);
-      } catch (const std::exception&) {
-        used = 0;
-      }
-      if (i >= f.size() || used != f[i].size())
+      const std::optional<double> v =
+          i < f.size() ? asperity::geometry::text::to_double(f[i]) : std::nullopt;
+      if (!v) {
         throw BadInput{"line " + std::to_string(n) + ", column \"" + header[i] +
                        "\": not a number"};
-      return v;
+      }
+      return *v;
     };
     rows.push_back({.model = model < f.size() ? f[model] : "",
                     .resolution = std::lround(number(resolution)),
