@@ -196,16 +196,4 @@ inline Level run_level(Setup setup, double s, double speed = kSpeed, bool graded
           .failure = w.failure};
 }
 
-// Observed order of three levels refined by the ratio r each, and the Richardson estimate of
-// the finest level's own discretization error (its distance from the extrapolated limit).
-struct Rate {
-  double order = 0, finest_error = 0;
-  double limit = 0;  // the extrapolated error: the limit's distance from Hertz
-};
-inline Rate richardson(double e1, double e2, double e3, double r) {
-  const double q = (e1 - e2) / (e2 - e3);
-  const double finest = (e2 - e3) / (q - 1);
-  return {.order = std::log(q) / std::log(r), .finest_error = finest, .limit = e3 - finest};
-}
-
 }  // namespace asperity::fdem::hertz

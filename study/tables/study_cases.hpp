@@ -72,6 +72,9 @@ inline constexpr double kSafetyObserved = 1.25;
 // Either way the limit is the finest value plus `weight` times the last change,
 // limit = v[n−1] + weight (v[n−1] − v[n−2]): weight = 1/((s[n−2]/s[n−1])^p − 1) at an observed
 // order p, the mean of the bracket's two such weights when assumed (extrapolate_like).
+// The convergence reports' rule is solver/core/richardson.hpp: three levels at one constant
+// ratio, the order they show printed whatever it is, no bracket, no safety factor; on levels that
+// converge at an order in the trusted range the two give the same limit (test_study_tables.cpp).
 struct Extrapolation {
   double limit = std::nan("");
   double error = std::nan("");  // relative: |estimate − limit| bound / |limit|

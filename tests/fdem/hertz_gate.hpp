@@ -10,6 +10,7 @@
 #include <vector>
 
 #include "scenes/hertz_series.hpp"
+#include "solver/core/richardson.hpp"
 #include "validation/reference/finite_sphere.hpp"
 #include "validation/reference/finite_sphere_dynamic.hpp"
 
@@ -19,8 +20,8 @@ inline const double kRatio = std::sqrt(2.0);  // refinement ratio between levels
 
 struct Sequence {
   std::vector<Level> levels;  // coarsest first
-  Rate peak, duration;
-  Rate peak_filtered;  // of the peak after the T/20 moving average (hertz_series.hpp)
+  RichardsonRate peak, duration;
+  RichardsonRate peak_filtered;  // of the peak after the T/20 moving average (hertz_series.hpp)
 };
 
 // Three whole-field levels (s falling by √2) at the block approach speed `speed`, printed as
@@ -42,10 +43,10 @@ inline Sequence sequence(Setup setup, double speed, std::initializer_list<double
     q.levels.push_back(l);
   }
   const std::vector<Level>& l = q.levels;
-  q.peak = hertz::richardson(l[0].err_force, l[1].err_force, l[2].err_force, kRatio);
-  q.duration = hertz::richardson(l[0].err_duration, l[1].err_duration, l[2].err_duration, kRatio);
-  q.peak_filtered = hertz::richardson(l[0].err_force_filtered, l[1].err_force_filtered,
-                                      l[2].err_force_filtered, kRatio);
+  q.peak = richardson_rate(l[0].err_force, l[1].err_force, l[2].err_force, kRatio);
+  q.duration = richardson_rate(l[0].err_duration, l[1].err_duration, l[2].err_duration, kRatio);
+  q.peak_filtered = richardson_rate(l[0].err_force_filtered, l[1].err_force_filtered,
+                                    l[2].err_force_filtered, kRatio);
   std::printf(
       "  order: peak %.2f, duration %.2f; finest level's own error: peak %+.4f, duration %+.4f; "
       "limit − Hertz: peak %+.4f, duration %+.4f; filtered peak: order %.2f, limit %+.4f\n",
@@ -71,7 +72,7 @@ inline void expect_converges(const Sequence& q, const char* what, bool filtered 
   const auto peak_error = [&](const Level& x) {
     return filtered ? x.err_force_filtered : x.err_force;
   };
-  const Rate& peak = filtered ? q.peak_filtered : q.peak;
+  const RichardsonRate& peak = filtered ? q.peak_filtered : q.peak;
   for (std::size_t i = 1; i < l.size(); ++i) {
     EXPECT_LT(std::abs(peak_error(l[i])), std::abs(peak_error(l[i - 1]))) << what << " level " << i;
     EXPECT_LT(std::abs(l[i].err_duration), std::abs(l[i - 1].err_duration))

@@ -23,6 +23,7 @@
 
 #include "peers/peer.hpp"
 #include "scenes/hertz_series.hpp"
+#include "solver/core/richardson.hpp"
 #include "solver/geometry/mesh_pipeline.hpp"
 #include "solver/geometry/random_particle.hpp"
 #include "solver/geometry/write_mesh.hpp"
@@ -109,7 +110,7 @@ Measured calculix_level(double a_over_r, double s, const std::string& tag) {
 }
 
 struct Limit {
-  fdem::hertz::Rate peak, duration;
+  RichardsonRate peak, duration;
 };
 
 // The sequence at refinements s, s/√2, s/2 and its Richardson limits (filtered peak, duration).
@@ -126,10 +127,9 @@ Limit calculix_sequence(double a_over_r, double s0, std::vector<Measured>& level
         l.impulse_ratio);
   }
   const double r = std::sqrt(2.0);
-  return {fdem::hertz::richardson(levels[0].err_filtered, levels[1].err_filtered,
-                                  levels[2].err_filtered, r),
-          fdem::hertz::richardson(levels[0].err_duration, levels[1].err_duration,
-                                  levels[2].err_duration, r)};
+  return {
+      richardson_rate(levels[0].err_filtered, levels[1].err_filtered, levels[2].err_filtered, r),
+      richardson_rate(levels[0].err_duration, levels[1].err_duration, levels[2].err_duration, r)};
 }
 
 // The reference: the dynamic finite sphere (small strain, linear, frictionless, rigid plane:
@@ -184,15 +184,15 @@ Limit asperity_sequence(double a_over_r, double s0) {
         100 * l.back().err_force_filtered, 100 * l.back().err_duration, l.back().impulse_ratio);
   }
   const double r = std::sqrt(2.0);
-  return {fdem::hertz::richardson(l[0].err_force_filtered, l[1].err_force_filtered,
-                                  l[2].err_force_filtered, r),
-          fdem::hertz::richardson(l[0].err_duration, l[1].err_duration, l[2].err_duration, r)};
+  return {
+      richardson_rate(l[0].err_force_filtered, l[1].err_force_filtered, l[2].err_force_filtered, r),
+      richardson_rate(l[0].err_duration, l[1].err_duration, l[2].err_duration, r)};
 }
 
 // The gate: the two limits within 2 % of each other, or within their combined estimated
 // error (each limit's error taken as its finest level's distance from it, the Richardson
 // estimate) when that is larger; the tolerance used is printed.
-void expect_limits_agree(const char* what, const fdem::hertz::Rate& a, const fdem::hertz::Rate& c) {
+void expect_limits_agree(const char* what, const RichardsonRate& a, const RichardsonRate& c) {
   const double tol = std::max(0.02, std::abs(a.finest_error) + std::abs(c.finest_error));
   std::printf(
       "%s: asperity %+.3f %% (order %.2f, ±%.3f), calculix %+.3f %% (order %.2f, ±%.3f), "
@@ -315,7 +315,7 @@ struct Estimate {
   double value = 0, error = 0, order = std::nan("");
 };
 Estimate estimate(double f1, double f2, double f3) {
-  const fdem::hertz::Rate r = fdem::hertz::richardson(f1, f2, f3, std::sqrt(2.0));
+  const RichardsonRate r = richardson_rate(f1, f2, f3, std::sqrt(2.0));
   if ((f1 - f2) / (f2 - f3) > 1) return {r.limit, std::abs(r.finest_error), r.order};
   return {f3, std::abs(f2 - f3)};
 }

@@ -14,13 +14,13 @@
 #include "solver/contact/hertz_impact.hpp"
 #include "solver/geometry/contact_local_surface.hpp"
 #include "solver/geometry/mass_properties.hpp"
-#include "solver/geometry/random_particle.hpp"
 #include "solver/geometry/repair_mesh.hpp"
 #include "solver/geometry/write_mesh.hpp"
 #include "solver/run/run_scene.hpp"
 #include "solver/scene/scene.hpp"
 #include "study/source_reference.hpp"
 #include "study/tables/study_cases.hpp"
+#include "tests/study/gate_particle.hpp"
 
 namespace asperity::study {
 namespace {
@@ -127,14 +127,7 @@ void check_reference(const std::string& name, const SurfaceMesh& source) {
 // A generated particle of a seed outside data/particles/set.json (its seeds are 1000-1049), with
 // the set's ballast-like shape numbers and its 20 480 source triangles.
 TEST(SourceReference, GeneratedParticleConverges) {
-  const SurfaceMesh source = geometry::random_particle({.seed = 7321,
-                                                        .size = 0.05,
-                                                        .elongation = 0.8,
-                                                        .flatness = 0.8,
-                                                        .angularity = 0.8,
-                                                        .roughness = 0.15,
-                                                        .faces = 20480});
-  check_reference("generated-7321", source);
+  check_reference("generated-7321", test::gate_particle_7321());
 }
 
 // A scanned stone (Settimi et al. 2022, ../shared/data/scans: never committed).

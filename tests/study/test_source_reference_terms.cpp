@@ -10,10 +10,10 @@
 #include <vector>
 
 #include "solver/geometry/geodesic_sphere.hpp"
-#include "solver/geometry/random_particle.hpp"
 #include "solver/geometry/refined_sphere.hpp"
 #include "study/source_reference.hpp"
 #include "study/tables/study_cases.hpp"
+#include "tests/study/gate_particle.hpp"
 
 namespace asperity::study::source_reference_terms_tests {
 namespace {
@@ -139,13 +139,7 @@ TEST(SourceReferenceTerms, ASlowlyConvergingReferenceCarriesItsDistanceToTheLimi
 TEST(SourceReferencePlan, EveryLevelRefinesTheSourcesOwnTrianglesAtTheContact) {
   const Material rock{.name = "rock", .density = 2650, .young = 50e9, .poisson = 0.25};
   for (long faces : {20480L, 1280L}) {
-    const SurfaceMesh source = geometry::random_particle({.seed = 7321,
-                                                          .size = 0.05,
-                                                          .elongation = 0.8,
-                                                          .flatness = 0.8,
-                                                          .angularity = 0.8,
-                                                          .roughness = 0.15,
-                                                          .faces = faces});
+    const SurfaceMesh source = test::gate_particle_7321(faces);
     const SourceReferenceOptions options{};
     const SourceReferencePlan plan = plan_source_reference(source, rock, 2.0, options);
     ASSERT_EQ(plan.sizes.size(), 3u) << faces;

@@ -11,6 +11,7 @@
 #include <gtest/gtest.h>
 
 #include "solver/core/error.hpp"
+#include "solver/core/richardson.hpp"
 #include "study/tables/tables.hpp"
 #include "tests/study/case_files.hpp"
 
@@ -153,6 +154,29 @@ TEST(Richardson, NonMonotoneThreeLevelsFallBackToTheBracket) {
   EXPECT_DOUBLE_EQ(three.error, two.error);
   // A missing level: no limit.
   EXPECT_TRUE(std::isnan(richardson({0.08, 0.04}, {100.0, std::nan("")}).limit));
+}
+
+// The convergence reports' three-level rule (solver/core/richardson.hpp): at a constant ratio its
+// closed-form order and limit are the study's own on a pure power law (the two rules differ only in
+// what they trust, study_cases.hpp); alternating changes have no order there, where the study falls
+// back to its bracket.
+TEST(Richardson, TheReportsThreeLevelRuleAgreesWithTheStudysOnAPowerLaw) {
+  const double r = std::sqrt(2.0);
+  const std::vector<double> h = {0.04, 0.04 / r, 0.02};
+  for (double p : {1.2, 2.0, 2.7}) {
+    const std::vector<double> v = sequence(h, 0.05, 0.8, p);
+    const RichardsonRate rate = richardson_rate(v[0], v[1], v[2], r);
+    // Round-off: q = r^p from differences of numbers near 0.05 that differ by about 1e-3, so a
+    // relative 1e-13 on q; log q / log r carries it to the order, 1e-9 leaves a thousand times
+    // that.
+    EXPECT_NEAR(rate.order, p, 1e-9) << p;
+    EXPECT_NEAR(rate.limit, 0.05, 1e-12) << p;
+    EXPECT_NEAR(rate.finest_error, 0.8 * std::pow(0.02, p), 1e-12) << p;
+    EXPECT_NEAR(rate.limit, richardson(h, v).limit, 1e-12) << p;
+  }
+  const RichardsonRate alternating = richardson_rate(100.0, 90.0, 95.0, 2.0);
+  EXPECT_TRUE(std::isnan(alternating.order));
+  EXPECT_FALSE(richardson({0.08, 0.04, 0.02}, {100.0, 90.0, 95.0}).observed);
 }
 
 }  // namespace richardson_tests

@@ -7,7 +7,8 @@ one's):
 - per level (setup, grading, a/R, s): element size, tetrahedra, steps, run CPU, peak and duration
   errors against Hertz, impulse/2mv; written as CSV to --csv;
 - per sequence, its finest three levels (s falling by sqrt2): the observed order, the finest level's own error
-  (Richardson) and the extrapolated limit's distance from Hertz;
+  (Richardson) and the extrapolated limit's distance from Hertz, as build/bin/hertz_rates computes
+  them (solver/core/richardson.hpp; --rates-program);
 - the limits against a/R: a least-squares line dev = c0 + c1 a/R, with the standard errors of
   c0 (the test of "converges to Hertz" as a/R -> 0) and c1 (the finite-sphere coefficient).
 
@@ -16,14 +17,30 @@ import argparse
 import csv
 import json
 import math
+import os
 import re
+import subprocess
+import sys
 
 
-def richardson(e1, e2, e3, r=math.sqrt(2)):
-    q = (e1 - e2) / (e2 - e3)
-    finest = (e2 - e3) / (q - 1)
-    order = math.log(q) / math.log(r) if q > 0 else float("nan")
-    return order, finest, e3 - finest
+# The C++ that owns the Richardson rule (solver/core/richardson.hpp, benchmarks/hertz_rates.cpp):
+# this script groups the levels into sequences and reads the order, the finest level's own error
+# and the limit it writes; it computes none of them.
+RATES = os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "..", "build", "bin",
+                     "hertz_rates")
+
+
+def richardson_rates(sequences, program, r=math.sqrt(2)):
+    """(order, finest level's own error, limit) of each (coarse, middle, fine) in `sequences`,
+    refined by r each, as hertz_rates computes them (to the last bit)."""
+    if not sequences:
+        return []
+    if not os.access(program, os.X_OK):
+        sys.exit(f"{program}: not built (cmake --build build --target hertz_rates); it computes "
+                 "the Richardson columns")
+    text = "".join(f"{e1!r} {e2!r} {e3!r} {r!r}\n" for e1, e2, e3 in sequences)
+    out = subprocess.run([program], input=text, capture_output=True, text=True, check=True).stdout
+    return [tuple(float(x) for x in line.split()) for line in out.splitlines()]
 
 
 def fit(xs, ys):
@@ -95,6 +112,8 @@ def main():
     ap.add_argument("--csv")
     ap.add_argument("--reference", help="reports/fem/finite_sphere.csv: the finite sphere's "
                     "impact by a/R, printed beside the limits")
+    ap.add_argument("--rates-program", default=RATES, help="build/bin/hertz_rates (the C++ that "
+                    "computes the Richardson columns)")
     ap.add_argument("runs", nargs="+")
     args = ap.parse_args()
     levels = {}
@@ -142,28 +161,36 @@ def main():
           "limit | finite sphere's (peak, duration) |")
     print("| --- | --- | ---: | --- | --- | --- | --- | --- | --- |")
     limits = {}
+    # Every three consecutive levels (s falling by sqrt2 each); the limit against a/R is the
+    # one of the gates' levels (the three ending at s = 1), or the finest three.
+    triples = []
     for (setup, grading, a) in sorted({k[:3] for k in keys}):
-        # Every three consecutive levels (s falling by sqrt2 each); the limit against a/R is the
-        # one of the gates' levels (the three ending at s = 1), or the finest three.
         scales = sorted((k[3] for k in keys if k[:3] == (setup, grading, a)), reverse=True)
-        if len(scales) < 3:
-            continue
         gate = [i for i in range(len(scales) - 2) if scales[i + 2] == 1.0]
         for i in range(len(scales) - 2):
-            triple = scales[i:i + 3]
-            seq = [levels[(setup, grading, a, s)] for s in triple]
-            rp = richardson(*[b["err_peak"] for b in seq])
-            rd = richardson(*[b["err_duration"] for b in seq])
-            ar = seq[2]["a_over_R"]
+            seq = [levels[(setup, grading, a, s)] for s in scales[i:i + 3]]
             filt = [b.get("err_peak_filtered", float("nan")) for b in seq]
-            rf = richardson(*filt) if all(f == f for f in filt) else None
-            filtered = f"{rf[0]:.2f}, {100 * rf[2]:+.2f} %" if rf else "–"
-            if i == (gate[0] if gate else len(scales) - 3):
-                limits.setdefault((setup, grading), []).append((ar, rp[2], rd[2]))
-            print(f"| {setup} | {grading} | {ar:.3f} | {', '.join(f'{s:.3f}' for s in triple)} | "
-                  f"{rp[0]:.2f}, {rd[0]:.2f} | "
-                  f"{100 * rp[1]:+.2f} %, {100 * rd[1]:+.2f} % | "
-                  f"{100 * rp[2]:+.2f} %, {100 * rd[2]:+.2f} % | {filtered} | {finite(ref, ar)} |")
+            triples.append((setup, grading, scales, gate, i, seq, all(f == f for f in filt)))
+    # The three metrics' sequences of every triple, in one call of the C++ (the filtered peak's
+    # only where all three levels have it).
+    asked = []
+    for (_, _, _, _, _, seq, has_filtered) in triples:
+        asked += [tuple(b["err_peak"] for b in seq), tuple(b["err_duration"] for b in seq)]
+        if has_filtered:
+            asked.append(tuple(b["err_peak_filtered"] for b in seq))
+    rates = iter(richardson_rates(asked, args.rates_program))
+    for (setup, grading, scales, gate, i, seq, has_filtered) in triples:
+        triple = scales[i:i + 3]
+        rp, rd = next(rates), next(rates)
+        rf = next(rates) if has_filtered else None
+        ar = seq[2]["a_over_R"]
+        filtered = f"{rf[0]:.2f}, {100 * rf[2]:+.2f} %" if rf else "–"
+        if i == (gate[0] if gate else len(scales) - 3):
+            limits.setdefault((setup, grading), []).append((ar, rp[2], rd[2]))
+        print(f"| {setup} | {grading} | {ar:.3f} | {', '.join(f'{s:.3f}' for s in triple)} | "
+              f"{rp[0]:.2f}, {rd[0]:.2f} | "
+              f"{100 * rp[1]:+.2f} %, {100 * rd[1]:+.2f} % | "
+              f"{100 * rp[2]:+.2f} %, {100 * rd[2]:+.2f} % | {filtered} | {finite(ref, ar)} |")
     print()
     for (setup, grading), pts in sorted(limits.items()):
         if len(pts) < 2:

@@ -4,7 +4,9 @@
 Reads the studies that tools/report/penalty_sensitivity.sh ran (the same cases at several
 values of Munjiza's penalty p = alpha E) and writes OUT/penalty_sensitivity.csv, .md and .png:
 peak force and impulse per particle, model, resolution and alpha, and for each case the change
-from the stiffest alpha (the limit the penalty approaches as its compliance vanishes).
+from the stiffest alpha (the limit the penalty approaches as its compliance vanishes). The
+summary per alpha (medians over the fem cases) is OUT/penalty_summary.csv, written by
+build/bin/penalty_summary (study/penalty_summary.cpp) and only read here.
 
 Usage: penalty_sensitivity.py --out OUT STUDY_DIR [STUDY_DIR ...]
 Runs under Debian's /usr/bin/python3 with python3-matplotlib.
@@ -14,6 +16,8 @@ import csv
 import json
 import math
 import os
+import subprocess
+import sys
 
 import matplotlib
 
@@ -22,6 +26,9 @@ import matplotlib.pyplot as plt  # noqa: E402
 import matplotlib.ticker  # noqa: E402
 
 from tabular import read_csv  # noqa: E402  (beside this file)
+
+SUMMARY = os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "..", "build", "bin",
+                       "penalty_summary")
 
 
 def read_study(folder):
@@ -47,6 +54,8 @@ def read_study(folder):
 def main():
     ap = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     ap.add_argument("--out", required=True)
+    ap.add_argument("--summary-program", default=SUMMARY, help="build/bin/penalty_summary (the C++ "
+                    "that computes the summary)")
     ap.add_argument("studies", nargs="+")
     a = ap.parse_args()
     rows = [x for d in a.studies for x in read_study(d)]
@@ -110,19 +119,22 @@ def main():
                      f"{r['peak_force']:.4g} | {pct(r['peak_vs_stiffest'])} | {pct(r['peak_vs_finest'])} | "
                      f"{pct(r['impulse_vs_stiffest'])} | {r['cpu_seconds']:.3g} |")
     # The summary a reader wants: median |change| of the fem peak between the coarser meshes and
-    # the finest, at each alpha; and median |change| of the fem peak from the stiffest alpha.
+    # the finest, at each alpha; and median |change| of the fem peak from the stiffest alpha. The
+    # C++ computes it (study/penalty_summary.cpp: OUT/penalty_summary.csv, which the study report
+    # reads too); this script only formats it.
+    summary_csv = os.path.join(a.out, "penalty_summary.csv")
+    if not os.access(a.summary_program, os.X_OK):
+        sys.exit(f"{a.summary_program}: not built (cmake --build build --target penalty_summary); "
+                 "it computes the summary")
+    subprocess.run([a.summary_program, os.path.join(a.out, "penalty_sensitivity.csv"), summary_csv],
+                   check=True)
+    summary = {float(r["alpha"]): r for r in read_csv(summary_csv)}
     lines += ["", "| α | fem: median \\|peak − finest\\| / finest (coarser meshes) | "
               f"fem: median \\|peak − peak(α = {stiff:g})\\| / peak(α = {stiff:g}) |", "|---:|---:|---:|"]
     for al in alphas:
-        fem = [r for r in rows if r["model"] == "fem" and r["alpha"] == al]
-        finest = max(r["resolution"] for r in rows)
-        a1 = sorted(abs(r["peak_vs_finest"]) for r in fem if r["resolution"] != finest
-                    and not math.isnan(r["peak_vs_finest"]))
-        a2 = sorted(abs(r["peak_vs_stiffest"]) for r in fem if not math.isnan(r["peak_vs_stiffest"]))
-
-        def med(v):
-            return math.nan if not v else (v[len(v) // 2] if len(v) % 2 else 0.5 * (v[len(v) // 2 - 1] + v[len(v) // 2]))
-        lines.append(f"| {al:g} | {100 * med(a1):.1f} % | {100 * med(a2):.1f} % |")
+        s = summary[al]
+        lines.append(f"| {al:g} | {100 * float(s['peak_vs_finest_median']):.1f} % | "
+                     f"{100 * float(s['peak_vs_stiffest_median']):.1f} % |")
     with open(os.path.join(a.out, "penalty_sensitivity.md"), "w") as f:
         f.write("\n".join(lines) + "\n")
 

@@ -1,6 +1,7 @@
 #!/usr/bin/env bash
 # Runs the penalty-sensitivity studies (data/study/penalty-a*.json: the same impacts at Munjiza
-# penalties α = 10, 100, 1000) into build/ and writes reports/study/penalty/ from them.
+# penalties α = 10, 100, 1000) into build/ and writes reports/study/penalty/ from them; its
+# summary per α by build/bin/penalty_summary (cmake --build build --target penalty_summary).
 # Usage: tools/report/penalty_sensitivity.sh [path/to/asperity]   (resumable: finished cases kept)
 set -euo pipefail
 root="$(cd "$(dirname "${BASH_SOURCE[0]}")/../.." && pwd)"

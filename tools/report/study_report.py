@@ -186,18 +186,6 @@ def check_inputs(study):
     check_json(os.path.join(study, "guidelines.json"))
 
 
-def quantile(v, p):
-    """The p-th quantile (0..1), linear between order statistics (Hyndman & Fan type 7): the tables' own
-    (study/curve_measures.cpp), so the report's medians and p90s are the tables'."""
-    v = sorted(v)
-    if not v:
-        return math.nan
-    h = p * (len(v) - 1)
-    lo = math.floor(h)
-    hi = min(lo + 1, len(v) - 1)
-    return v[lo] + (h - lo) * (v[hi] - v[lo])
-
-
 class Doc:
     """Markdown and HTML written side by side from the same calls."""
 
@@ -636,28 +624,21 @@ def penalty_section(out, pen_dir, doc):
     table = os.path.join(pen_dir, "penalty_sensitivity.csv")
     if not os.path.exists(table):
         return
-    rows = read_csv(table)
+    summary_csv = os.path.join(pen_dir, "penalty_summary.csv")
+    if not os.path.isfile(summary_csv):
+        raise BadInput(f"{summary_csv}: missing beside {table} (tools/report/penalty_sensitivity.sh "
+                       "writes both)")
+    rows = read_csv(summary_csv)
     doc.h(2, "Peak force, resolution and the penalty")
     doc.p("Munjiza's potential contact adds a penalty layer whose compliance grows with the element size: with "
           "p = alpha E, a coarse mesh meets the block through a softer contact than a fine one. The same impacts at "
           "alpha = 10, 100 and 1000 (reports/study/penalty/, made by tools/report/penalty_sensitivity.sh) separate that from "
           "the geometry: median over particles and coarser meshes of |peak - peak at the finest mesh| / peak at the "
           "finest mesh, same alpha, and median |peak - peak at the stiffest alpha| / peak at the stiffest alpha, fem.")
-    alphas = sorted({num(r["alpha"]) for r in rows})
-    finest = max(int(r["resolution"]) for r in rows)
-
-    def median(v):
-        return quantile(v, 0.5)
-
-    summary = []
-    for al in alphas:
-        fem = [r for r in rows if r["model"] == "fem" and num(r["alpha"]) == al]
-        summary.append([fmt(al), pct(median([abs(num(r["peak_vs_finest"])) for r in fem
-                                             if int(r["resolution"]) != finest])),
-                        pct(median([abs(num(r["peak_vs_stiffest"])) for r in fem])),
-                        pct(median([abs(num(r["impulse_vs_stiffest"])) for r in fem])),
-                        fmt(sum(num(r["cpu_seconds"]) for r in fem if int(r["resolution"]) == finest) /
-                            max(1, sum(1 for r in fem if int(r["resolution"]) == finest)), 3)])
+    # The medians and the mean per alpha as the C++ computed them (study/penalty_summary.cpp).
+    finest = max(int(num(r["finest_resolution"])) for r in rows)
+    summary = [[fmt(r["alpha"]), pct(r["peak_vs_finest_median"]), pct(r["peak_vs_stiffest_median"]),
+                pct(r["impulse_vs_stiffest_median"]), fmt(r["cpu_seconds_finest_mean"], 3)] for r in rows]
     doc.table(["alpha", "peak vs finest mesh", "peak vs stiffest alpha", "impulse vs stiffest alpha",
                f"CPU at {finest} (s, mean)"], summary)
     png = os.path.join(pen_dir, "penalty_sensitivity.png")

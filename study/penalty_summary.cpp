@@ -1,0 +1,149 @@
+// penalty_summary PENALTY.csv SUMMARY.csv: the summary of the penalty-sensitivity runs
+// (tools/report/penalty_sensitivity.sh; reports/study/penalty/), one row per penalty α, computed
+// here so the Markdown of penalty_sensitivity.py and the study report's penalty section only read
+// it. PENALTY.csv is the per-case table penalty_sensitivity.py writes (particle, model,
+// resolution, alpha, cpu_seconds and the changes peak_vs_finest, peak_vs_stiffest,
+// impulse_vs_stiffest); SUMMARY.csv has, over the fem cases at that α:
+// - peak_vs_finest_median: the median |peak − peak at the finest mesh| / that, coarser meshes only;
+// - peak_vs_stiffest_median, impulse_vs_stiffest_median: the median |change| from the stiffest α;
+// - cpu_seconds_finest_mean: the mean CPU seconds at the finest mesh.
+// Medians are the study's quantile (curve_measures.hpp, type 7) over the finite changes (a case
+// without its finest or stiffest partner has none); numbers to the last bit (17 digits), so a
+// reader formats exactly these doubles. Bad input: one line naming the file and the problem,
+// exit 2.
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+#include <fstream>
+#include <map>
+#include <sstream>
+#include <stdexcept>
+#include <string>
+#include <vector>
+
+#include "solver/geometry/mesh_text.hpp"
+#include "solver/io/atomic_file.hpp"
+#include "solver/io/csv.hpp"
+#include "study/curve_measures.hpp"
+
+namespace {
+
+struct Row {
+  std::string model;
+  long resolution = 0;
+  double alpha = 0, cpu_seconds = 0, peak_vs_finest = 0, peak_vs_stiffest = 0,
+         impulse_vs_stiffest = 0;
+};
+
+struct BadInput {
+  std::string what;
+};
+
+// The fields of one line (Python's csv module ends its lines with CR LF).
+std::vector<std::string> split(std::string line) {
+  if (!line.empty() && line.back() == '\r') line.pop_back();
+  std::vector<std::string> out;
+  std::stringstream s(line);
+  for (std::string f; std::getline(s, f, ',');) out.push_back(f);
+  if (!line.empty() && line.back() == ',') out.emplace_back();
+  return out;
+}
+
+// The rows of PENALTY.csv (plain fields: penalty_sensitivity.py writes no quoted ones).
+std::vector<Row> read_rows(const std::string& file) {
+  std::ifstream in(file);
+  if (!in) throw BadInput{"cannot be read"};
+  std::string line;
+  if (!std::getline(in, line)) throw BadInput{"is empty"};
+  const std::vector<std::string> header = split(line);
+  const auto column = [&](const char* name) {
+    const auto it = std::find(header.begin(), header.end(), name);
+    if (it == header.end()) throw BadInput{std::string("has no column \"") + name + "\""};
+    return static_cast<std::size_t>(it - header.begin());
+  };
+  const std::size_t model = column("model"), resolution = column("resolution"),
+                    alpha = column("alpha"), cpu = column("cpu_seconds"),
+                    finest = column("peak_vs_finest"), stiffest = column("peak_vs_stiffest"),
+                    impulse = column("impulse_vs_stiffest");
+  std::vector<Row> rows;
+  for (long n = 2; std::getline(in, line); ++n) {
+    const std::vector<std::string> f = split(line);
+    const auto number = [&](std::size_t i) {
+      const std::optional<double> v =
+          i < f.size() ? asperity::geometry::text::to_double(f[i]) : std::nullopt;
+      if (!v) {
+        throw BadInput{"line " + std::to_string(n) + ", column \"" + header[i] +
+                       "\": not a number"};
+      }
+      return *v;
+    };
+    rows.push_back({.model = model < f.size() ? f[model] : "",
+                    .resolution = std::lround(number(resolution)),
+                    .alpha = number(alpha),
+                    .cpu_seconds = number(cpu),
+                    .peak_vs_finest = number(finest),
+                    .peak_vs_stiffest = number(stiffest),
+                    .impulse_vs_stiffest = number(impulse)});
+  }
+  if (rows.empty()) throw BadInput{"has no cases"};
+  return rows;
+}
+
+std::string summary(const std::vector<Row>& rows) {
+  long finest = 0;
+  for (const Row& r : rows) finest = std::max(finest, r.resolution);
+  std::map<double, std::vector<const Row*>> fem;  // by α, ascending
+  for (const Row& r : rows) {
+    auto& at = fem[r.alpha];  // every α a row, fem cases or none
+    if (r.model == "fem") at.push_back(&r);
+  }
+  const auto median = [](const std::vector<const Row*>& at, auto change, auto keep) {
+    std::vector<double> v;
+    for (const Row* r : at) {
+      if (keep(*r) && std::isfinite(change(*r))) v.push_back(std::abs(change(*r)));
+    }
+    return asperity::study::quantile(v, 0.5);
+  };
+  const auto all = [](const Row&) { return true; };
+  asperity::io::CsvWriter csv(
+      {"alpha", "finest_resolution", "peak_vs_finest_median", "peak_vs_stiffest_median",
+       "impulse_vs_stiffest_median", "cpu_seconds_finest_mean"},
+      17);
+  for (const auto& [alpha, at] : fem) {
+    double cpu = 0;
+    long cases = 0;
+    for (const Row* r : at) {
+      if (r->resolution != finest) continue;
+      cpu += r->cpu_seconds;
+      ++cases;
+    }
+    csv.number(alpha)
+        .number(static_cast<double>(finest))
+        .number(median(
+            at, [](const Row& r) { return r.peak_vs_finest; },
+            [&](const Row& r) { return r.resolution != finest; }))
+        .number(median(
+            at, [](const Row& r) { return r.peak_vs_stiffest; }, all))
+        .number(median(
+            at, [](const Row& r) { return r.impulse_vs_stiffest; }, all))
+        .number(cpu / static_cast<double>(std::max(1L, cases)))
+        .end_row();
+  }
+  return csv.str();
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  if (argc != 3) {
+    std::fprintf(stderr, "usage: penalty_summary PENALTY.csv SUMMARY.csv\n");
+    return 2;
+  }
+  try {
+    asperity::io::write_atomically(argv[2], summary(read_rows(argv[1])));
+  } catch (const BadInput& e) {
+    std::fprintf(stderr, "%s: %s\n", argv[1], e.what.c_str());
+    return 2;
+  }
+  return 0;
+}
