@@ -41,8 +41,9 @@ void BM_InternalForces(benchmark::State& state) {
 BENCHMARK(BM_InternalForces)->Arg(8)->Arg(16)->Arg(24);
 
 // The same forces element by element through the one-element kernel (fem/neo_hookean_tet.hpp):
-// the element loop as it was before the batched one (fem/tet_elements.cpp), whose result it
-// equals to the bit; kept as the before of that change, in the same process.
+// the element loop as it was before the batched one (fem/internal_forces.cpp), whose result it
+// equals to round-off (to the bit without FMA); kept as the before of that change, in the same
+// process.
 void BM_InternalForcesPerElement(benchmark::State& state) {
   const TetMesh m = fdem::ball_mesh(0.1, static_cast<int>(state.range(0)));
   const fem::TetElements e = fem::make_tet_elements(m.nodes, m.tets, 1e9, 0.3, 2000, 0, "ball");

@@ -1,5 +1,5 @@
 // The natural logarithm as plain arithmetic (no library call, no table, no branch), so that the
-// batched element loop (fem/tet_elements.cpp) can take the ln J of a whole batch in vector
+// batched element loop (fem/internal_forces.cpp) can take the ln J of a whole batch in vector
 // registers instead of one libm call per element (a tenth of the batched element work was that
 // call; docs/physics.md, "FEM/DEM step cost").
 //
@@ -21,7 +21,7 @@
 // conversion): k + 1023 is put in the low bits of 2⁵² and 2⁵² subtracted, which is exact.
 //
 // Valid for normal positive finite x (DBL_MIN ≤ x < ∞); the caller handles the rest (J ≤ 0 is an
-// inverted element, tet_elements.cpp) and takes std::log for subnormal or infinite x.
+// inverted element, internal_forces.cpp) and takes std::log for subnormal or infinite x.
 #pragma once
 
 #include <bit>

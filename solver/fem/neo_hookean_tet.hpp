@@ -51,10 +51,11 @@ inline TetReference tet_reference(const Vec3& x0, const Vec3& x1, const Vec3& x2
 }
 
 // The kernel in two stages around the logarithm, shared by the one-element form below and the
-// batched element loop (fem/tet_elements.cpp), which runs each stage over a batch of elements in
-// structure of arrays so that the compiler vectorizes it; the same expressions in the same order
-// give the same bits either way. Component c of an element's 9 values sits at [c · S]: S = 1 for
-// one element, the batch size for a batch.
+// batched element loop (fem/internal_forces.cpp), which runs each stage over a batch of elements
+// in structure of arrays so that the compiler vectorizes it; the same expressions in the same
+// order give the same bits either way, except where a target with FMA fuses multiply-adds (the
+// loop's clones for such targets do: round-off). Component c of an element's 9 values sits at [c ·
+// S]: S = 1 for one element, the batch size for a batch.
 //
 // Stage 1: F = Ds B and cof F (= J F⁻ᵀ), row-major (F[(3r + c) S] = F(r, c)), from Ds
 // (d[(3r + c) S] = row r of edge c, x_{c+1} − x₀) and B = Dm⁻¹ (column-major, b[(r + 3c) S]);

@@ -1,9 +1,11 @@
 // The state both element laws' batched-loop tests run (test_neo_hookean_tet.cpp,
 // test_linear_elastic_tet.cpp): a ball mesh's nodes moved by a deterministic 1 % jiggle, with
 // element 100 turned inside out (its fourth node reflected through its first), so the loop must
-// both compute and report an inverted element.
+// both compute and report an inverted element. `separated` gives every element nodes of its own,
+// so that the loop's forces on them are that element's alone, to be compared element by element.
 #pragma once
 
+#include <algorithm>
 #include <cmath>
 
 #include "solver/fem/tet_elements.hpp"
@@ -18,6 +20,32 @@ inline Eigen::Matrix3Xd strained_ball(const TetElements& e, const Eigen::Matrix3
   }
   x.col(e.tets(3, 100)) = x.col(e.tets(0, 100)) - (x.col(e.tets(3, 100)) - x.col(e.tets(0, 100)));
   return x;
+}
+
+// The elements of `e` in the state `x`, each with four nodes of its own (element k's node a is node
+// 4k + a): the same reference data and element order.
+struct Separated {
+  TetElements e;
+  Eigen::Matrix3Xd x;
+};
+inline Separated separated(const TetElements& e, const Eigen::Matrix3Xd& x) {
+  Separated s{.e = e, .x = Eigen::Matrix3Xd(3, 4 * e.size())};
+  for (int k = 0; k < e.size(); ++k) {
+    for (int a = 0; a < 4; ++a) {
+      s.e.tets(a, k) = 4 * k + a;
+      s.x.col(4 * k + a) = x.col(e.tets(a, k));
+    }
+  }
+  return s;
+}
+
+// The force scale of element k under a unit strain, V₀ (λ + 2μ) max_a |∇N_a|, N: the yardstick of
+// the round-off between two schedules of the same element arithmetic.
+inline double unit_strain_force(const TetElements& e, int k) {
+  const Eigen::Map<const Mat3> b(&e.dm_inv[9 * static_cast<std::size_t>(k)]);
+  const double g =
+      std::max({b.row(0).norm(), b.row(1).norm(), b.row(2).norm(), b.colwise().sum().norm()});
+  return e.volume[k] * (e.lame.lambda + 2 * e.lame.mu) * g;
 }
 
 }  // namespace asperity::fem::test_material
