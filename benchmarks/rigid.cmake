@@ -4,7 +4,7 @@
 if(TARGET asperity_geometry)
   # The smoke runs every benchmark but the broad phase on the 1000- and 2000-vertex hulls: their
   # set-up (the geometry pipeline's TetGen passes and lifting on long, flat hull tetrahedra) took
-  # 12 and 54 s of the smoke's 72 s on the development machine (102 s in CI), for 0.08 and 0.18 ms
+  # 12 and 54 s of the smoke's 72 s on the development machine (102 s in a fresh-clone .ci/run there), for 0.08 and 0.18 ms
   # of the measured call; the 50- and 250-vertex hulls run the same code.
   set(bench_rigid_SMOKE_FILTER
       "^(BM_OverlapKernel|BM_NarrowPhase/.*|BM_BroadPhaseHull/(50|250)|BM_RigidDrop/.*)$")
