@@ -7,6 +7,7 @@
 #include "solver/contact/hertz_impact.hpp"
 #include "solver/geometry/local_curvature.hpp"
 #include "solver/geometry/mass_properties.hpp"
+#include "solver/run/impact_measures.hpp"
 
 namespace asperity::study {
 
@@ -76,6 +77,12 @@ SourceReferencePlan plan_source_reference(const SurfaceMesh& source, const Mater
   return p;
 }
 
+SourceLevel source_level(double filtered_peak_force, double impulse, double contact_duration) {
+  return {.peak_force = filtered_peak_force / (1 - run::kFilteredPeakBiasHertz),
+          .impulse = impulse,
+          .contact_duration = contact_duration};
+}
+
 namespace {
 
 SourceMetric metric(const std::vector<double>& sizes, const std::vector<SourceLevel>& patch,
@@ -99,13 +106,15 @@ SourceMetric metric(const std::vector<double>& sizes, const std::vector<SourceLe
     m.discretization =
         std::max(m.discretization, std::abs(own - m.limit.limit) / std::abs(m.limit.limit));
   }
-  m.uncertainty = m.discretization;
+  if (value == &SourceLevel::peak_force)
+    m.filter = run::kFilteredPeakBiasHertz - run::kFilteredPeakBiasHalfSine;
+  m.uncertainty = std::hypot(m.discretization, m.filter);
   if (!doubled.empty()) {
     // The doubled patch's levels at the patch's order and weight: the two differ level by level
     // by ±0.2–0.7 % with alternating sign (gen7321), so the doubled sequence's own order, often
     // another or an oscillation, would extrapolate that noise instead of the patch's effect.
     m.patch_change = tables::extrapolate_like(values(doubled), m.limit) / m.limit.limit - 1;
-    m.uncertainty = std::hypot(m.discretization, m.patch_change);
+    m.uncertainty = std::hypot(m.discretization, m.patch_change, m.filter);
   }
   return m;
 }

@@ -4,12 +4,26 @@
 
 #include <algorithm>
 #include <cmath>
+#include <numbers>
 #include <optional>
 #include <vector>
 
+#include "solver/contact/hertz_impact.hpp"
 #include "solver/core/vec.hpp"
 
 namespace asperity::run {
+
+// How much the filtered peak (ImpactMeasures::filtered_peak) lowers a smooth pulse of duration T:
+// a centred mean over w = T/20 of F(t_p + τ) ≈ F (1 − κ τ² / 2) is F (1 − κ w² / 24).
+// - Half-sine, κ = π² / T²: (π/40)² / 6 = 0.103 %.
+// - Hertz's impact (Johnson 1985, §11.4): F = K δ^{3/2} with m δ'' = −F, so at the peak (δ' = 0)
+//   F'' / F = (3/2) δ'' / δ_max = −(3/2) F_max / (m δ_max), and the energy ½ m v² = (2/5) F_max
+//   δ_max gives κ = (15/8) v² / δ_max² = (15/8) c² / T², c = T v / δ_max = kHertzDurationFactor:
+//   (15/8) c² / 9600 = 0.169 %.
+// A pulse between the two shapes (a finite or rough body) lies within their difference, 0.066 %.
+inline constexpr double kFilteredPeakBiasHalfSine = std::numbers::pi * std::numbers::pi / 9600.0;
+inline constexpr double kFilteredPeakBiasHertz =
+    15.0 / 8.0 * contact::kHertzDurationFactor * contact::kHertzDurationFactor / 9600.0;
 
 // Fed once per step with the recorded body's total contact force and its largest signed
 // overlap s (m; negative while apart). Contact starts and ends are placed by linear
@@ -67,8 +81,9 @@ struct ImpactMeasures {
 
   // Peak of the first contact's force after a centred moving average over a twentieth of that
   // contact's duration (issue 11): a low-pass tied to the contact time that removes the ringing
-  // of the highest element modes and lowers a half-sine pulse's peak by only (π/40)²/6 ≈ 0.1 %.
-  // 0 before any contact.
+  // of the highest element modes and lowers a smooth pulse's peak by κ w² / 24 (κ = |F''| / F at
+  // the peak, w = T / 20): kFilteredPeakBiasHalfSine for a half-sine, kFilteredPeakBiasHertz for
+  // Hertz's pulse (below). 0 before any contact.
   double filtered_peak() const {
     const std::size_t n = first_contact_force.size();
     if (n == 0) return 0;

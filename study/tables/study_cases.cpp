@@ -110,7 +110,8 @@ std::optional<StudyCases::Reference> source_reference_of(const StudyCases& s,
       continue;
     }
     const Measures m = measures_of(c);
-    const SourceLevel l{.peak_force = m.peak, .impulse = m.impulse, .contact_duration = m.duration};
+    const SourceLevel l =
+        source_level(number(c.summary, "peak_force_filtered"), m.impulse, m.duration);
     if (c.key.source_patch == 1) {
       near.push_back(l);
       patch.push_back(&c);
@@ -142,7 +143,8 @@ std::optional<StudyCases::Reference> source_reference_of(const StudyCases& s,
                       std::abs(finest.first_contact - before.first_contact) / r.values.duration};
   r.patch = {ref.peak_force.patch_change, ref.impulse.patch_change,
              ref.contact_duration.patch_change};
-  r.uncertainty = quadrature(r.discretization, abs_of(r.patch));
+  r.uncertainty = quadrature(quadrature(r.discretization, abs_of(r.patch)),
+                             FemErrors{ref.peak_force.filter, 0, 0, 0});
   return r;
 }
 

@@ -28,6 +28,7 @@ struct CaseFiles {
   double first_contact = 5e-5;                 // s
   double cpu_seconds = 1.0;
   std::optional<double> element_size_rel;  // case.json's refined size over R, when written
+  std::optional<double> peak_filtered;     // summary.json's peak_force_filtered, N, when written
 };
 
 // A finished case of `study`: case.json (the done marker, with the study's facts) and summary.json
@@ -35,13 +36,13 @@ struct CaseFiles {
 inline void write_case(const std::filesystem::path& study, const CaseKey& k, const CaseFiles& f) {
   const std::filesystem::path dir = case_dir(study, k);
   std::filesystem::create_directories(dir);
-  std::ofstream(dir / "summary.json") << tables::OJson{
-      {"status", "ok"},
-      {"peak_force", f.peak},
-      {"impulse", f.impulse},
-      {"contact_duration", f.duration},
-      {"first_contact_time",
-       f.first_contact}}.dump();
+  tables::OJson summary{{"status", "ok"},
+                        {"peak_force", f.peak},
+                        {"impulse", f.impulse},
+                        {"contact_duration", f.duration},
+                        {"first_contact_time", f.first_contact}};
+  if (f.peak_filtered) summary["peak_force_filtered"] = *f.peak_filtered;
+  std::ofstream(dir / "summary.json") << summary.dump();
   tables::OJson c{{"start_gap", 1e-4}, {"cpu_seconds", f.cpu_seconds}};
   if (f.element_size_rel) c["element_size_rel"] = *f.element_size_rel;
   std::ofstream(dir / "case.json") << c.dump();

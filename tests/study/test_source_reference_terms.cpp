@@ -11,6 +11,7 @@
 
 #include "solver/geometry/geodesic_sphere.hpp"
 #include "solver/geometry/refined_sphere.hpp"
+#include "solver/run/impact_measures.hpp"
 #include "study/source_reference.hpp"
 #include "study/tables/study_cases.hpp"
 #include "tests/study/gate_particle.hpp"
@@ -52,8 +53,9 @@ TEST(SourceReferenceTerms, ConstantOffsetOfTheDoubledPatchIsTheChangeExactly) {
     EXPECT_TRUE(m->limit.observed);
     EXPECT_NEAR(m->limit.order, p, 1e-9);  // the bisection's 2^-100 of its bracket
     EXPECT_NEAR(m->patch_change, 0.007, kRoundOff);
-    // The uncertainty: the extrapolation's estimated error and the patch term in quadrature.
-    EXPECT_NEAR(m->uncertainty, std::hypot(m->limit.error, 0.007), kRoundOff);
+    // The uncertainty: the extrapolation's estimated error, the patch term and (peak force
+    // only) the filter's term in quadrature.
+    EXPECT_NEAR(m->uncertainty, std::hypot(m->limit.error, 0.007, m->filter), kRoundOff);
   }
   EXPECT_NEAR(r.peak_force.limit.limit, limit, 1e-9);
 }
@@ -104,9 +106,12 @@ TEST(SourceReferenceTerms, AssumedOrderCarriesTheBracketWeightToTheDoubledPatch)
 TEST(SourceReferenceTerms, WithoutTheDoubledPatchTheUncertaintyIsTheExtrapolationsError) {
   const SourceReference r = source_reference(kSizes, levels(1000, 4000, 1.3), {});
   EXPECT_TRUE(std::isnan(r.peak_force.patch_change));
-  EXPECT_DOUBLE_EQ(r.peak_force.uncertainty, r.peak_force.limit.error);
+  EXPECT_DOUBLE_EQ(r.peak_force.discretization, r.peak_force.limit.error);
   // Roache's 1.25 times the last correction c h3^p over the limit (tables::richardson).
-  EXPECT_NEAR(r.peak_force.uncertainty, 1.25 * 4000 * std::pow(kSizes[2], 1.3) / 1000, 1e-9);
+  EXPECT_NEAR(r.peak_force.discretization, 1.25 * 4000 * std::pow(kSizes[2], 1.3) / 1000, 1e-9);
+  EXPECT_DOUBLE_EQ(r.peak_force.uncertainty,
+                   std::hypot(r.peak_force.limit.error, r.peak_force.filter));
+  EXPECT_DOUBLE_EQ(r.impulse.uncertainty, r.impulse.limit.error);
 }
 
 TEST(SourceReferenceTerms, ASlowlyConvergingReferenceCarriesItsDistanceToTheLimit) {
@@ -123,10 +128,26 @@ TEST(SourceReferenceTerms, ASlowlyConvergingReferenceCarriesItsDistanceToTheLimi
   const double truth = std::abs(limit - m.limit.limit) / m.limit.limit;
   EXPECT_GT(truth, 2 * m.limit.error);  // the bracket's spread alone would understate it
   EXPECT_NEAR(m.discretization, truth, kRoundOff);
-  EXPECT_DOUBLE_EQ(m.uncertainty, m.discretization);  // no patch check run
+  EXPECT_DOUBLE_EQ(m.uncertainty, std::hypot(m.discretization, m.filter));  // no patch check
   // A sequence at an observed order keeps richardson's error unchanged.
   const SourceReference q = source_reference(kSizes, levels(1000, 4000, 1.3), {});
   EXPECT_DOUBLE_EQ(q.peak_force.discretization, q.peak_force.limit.error);
+}
+
+// A level's peak is its ringing-free peak (source_level): the filtered peak over 1 minus the
+// filter's bias on Hertz's pulse, 0.169 %; the reference's peak force carries the bias's
+// dependence on the pulse's shape, Hertz's less a half-sine's (0.066 %), in its uncertainty, and
+// the other metrics carry nothing of the filter. Exact to round-off.
+TEST(SourceReferenceTerms, ThePeakIsRingingFreeAndCarriesTheFiltersShapeTerm) {
+  const SourceLevel l = source_level(1000, 2, 3e-4);
+  EXPECT_NEAR(l.peak_force, 1000 / (1 - run::kFilteredPeakBiasHertz), kRoundOff * 1000);
+  EXPECT_NEAR(l.peak_force / 1000 - 1, 0.00169, 1e-5);  // (15/8) 2.9433² / 9600
+  EXPECT_EQ(l.impulse, 2);
+  EXPECT_EQ(l.contact_duration, 3e-4);
+  const SourceReference r = source_reference(kSizes, levels(1000, 4000, 1.3), {});
+  EXPECT_NEAR(r.peak_force.filter, 0.00066, 1e-5);
+  EXPECT_EQ(r.impulse.filter, 0);
+  EXPECT_EQ(r.contact_duration.filter, 0);
 }
 
 // The plan's sizes on two generated particles whose contact spans different numbers of source
