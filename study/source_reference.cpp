@@ -97,6 +97,12 @@ SourceMetric metric(const std::vector<double>& sizes, const std::vector<SourceLe
   m.limit = tables::richardson(sizes, v);
   m.discretization = m.limit.error;
   const std::size_t n = v.size();
+  if (!m.limit.observed && n >= 3 && (v[n - 1] - v[n - 2]) * (v[n - 2] - v[n - 3]) < 0 &&
+      std::isfinite(m.limit.limit) && m.limit.limit != 0) {
+    // Changes that alternate in sign (the header): at least the last change.
+    m.discretization =
+        std::max(m.discretization, std::abs(v[n - 1] - v[n - 2]) / std::abs(m.limit.limit));
+  }
   const double p = m.limit.changes_order;
   if (!m.limit.observed && std::isfinite(p) && p < tables::kObservedOrderMin && n >= 2 &&
       std::isfinite(m.limit.limit) && m.limit.limit != 0) {

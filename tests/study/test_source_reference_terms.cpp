@@ -134,6 +134,21 @@ TEST(SourceReferenceTerms, ASlowlyConvergingReferenceCarriesItsDistanceToTheLimi
   EXPECT_DOUBLE_EQ(q.peak_force.discretization, q.peak_force.limit.error);
 }
 
+TEST(SourceReferenceTerms, AlternatingChangesCarryAtLeastTheLastChange) {
+  // rock_04's filtered peaks (6 December 2026): −2.0 %, then +0.15 %: no observed order, the
+  // bracket's limit, and a discretization term of at least the last change over the limit, where
+  // the bracket's half spread alone is about 0.3 of it.
+  std::vector<SourceLevel> patch = {
+      {.peak_force = 176910}, {.peak_force = 173370}, {.peak_force = 173637}};
+  const SourceReference r = source_reference(kSizes, patch, {});
+  ASSERT_FALSE(r.peak_force.limit.observed);
+  EXPECT_LT(r.peak_force.limit.error, 0.5 * 267 / r.peak_force.limit.limit);
+  EXPECT_NEAR(r.peak_force.discretization, 267 / r.peak_force.limit.limit, kRoundOff);
+  // Changes of one sign at a trusted order keep richardson's error.
+  const SourceReference q = source_reference(kSizes, levels(1000, 4000, 1.3), {});
+  EXPECT_DOUBLE_EQ(q.peak_force.discretization, q.peak_force.limit.error);
+}
+
 // A level's peak is its ringing-free peak (source_level): the filtered peak over 1 minus the
 // filter's bias on Hertz's pulse, 0.169 %; the reference's peak force carries the bias's
 // dependence on the pulse's shape, Hertz's less a half-sine's (0.066 %), in its uncertainty, and
