@@ -10,6 +10,7 @@
 // factor on the error; these reports print the order the levels show, whatever it is.
 #pragma once
 
+#include <algorithm>
 #include <cmath>
 
 namespace asperity {
@@ -36,6 +37,51 @@ inline RichardsonRate richardson_from_ratio(double q, double e2, double e3, doub
 // Three levels e1, e2, e3, coarse to fine, refined by the ratio r each.
 inline RichardsonRate richardson_rate(double e1, double e2, double e3, double r) {
   return richardson_from_ratio((e1 - e2) / (e2 - e3), e2, e3, r);
+}
+
+// The orders at which an observed order is believed (Roache 1998, ch. 5: Richardson's limit holds
+// only in the asymptotic range, and an observed order far from the formal one says the levels are
+// not in it). Above: 4-node tetrahedra converge at about order 2 in displacement-driven quantities
+// on smooth solutions, and the graded FEM contact measured 1.2-2.7 in peak force and 1.2-3.2 in
+// duration (reports/fem/hertz_convergence.md); an order above 5 (changes falling 5.7 times per
+// level at r = √2) is a stall or noise in the last change, not a rate. Below: the particles'
+// vertex contacts converge at order 0.9-1 (reports/peers/calculix/README.md); under 0.5 the limit
+// would lie more than 5.3 last changes beyond the finest level, farther than three levels can
+// vouch for. The study's rule reads the same range (study/tables/study_cases.hpp,
+// kObservedOrderMin/Max).
+inline constexpr double kTrustedOrderMin = 0.5, kTrustedOrderMax = 5.0;
+// Where the order is not trusted: Roache's grid convergence index of the two finest levels at the
+// formal order, Fs |e2 − e3|/(r^p − 1), with Fs = 3 (Roache 1998, ch. 5: 3 for two levels or an
+// assumed order, 1.25 only where three levels observe it) and p = 2 (linear tetrahedra). At
+// r = √2 that is 3 last changes: the distance to the limit at any order above 0.83 (1 last change
+// at order 2, 2.4 at order 1, the particles' order), not a claim that the levels converge at 2.
+inline constexpr double kUntrustedSafety = 3.0, kFormalOrder = 2.0;
+
+// A cross-check's estimate from three levels (asperity's against a peer's:
+// tests/peers/test_calculix.cpp): where the observed order lies in
+// [kTrustedOrderMin, kTrustedOrderMax], Richardson's limit with its finest level's distance from
+// it as the error; otherwise (alternating or growing changes, no order, or an order out of range)
+// the finest level itself, with the untrusted GCI band above as its error, never less than the
+// last change: levels that move by that much are not known better than that.
+struct RichardsonEstimate {
+  double value = std::nan("");  // the limit where the order is trusted, else the finest level
+  double error = std::nan("");  // ≥ 0, in the levels' units
+  double order = std::nan("");  // the observed order, trusted or not (NaN: no order)
+  bool trusted = false;
+};
+
+inline RichardsonEstimate richardson_estimate(double e1, double e2, double e3, double r) {
+  const RichardsonRate rate = richardson_rate(e1, e2, e3, r);
+  // NaN orders (q ≤ 0, or 0/0) fail both comparisons and are refused.
+  if (rate.order >= kTrustedOrderMin && rate.order <= kTrustedOrderMax)
+    return {.value = rate.limit,
+            .error = std::abs(rate.finest_error),
+            .order = rate.order,
+            .trusted = true};
+  const double last = std::abs(e2 - e3);
+  return {.value = e3,
+          .error = std::max(1.0, kUntrustedSafety / (std::pow(r, kFormalOrder) - 1)) * last,
+          .order = rate.order};
 }
 
 }  // namespace asperity

@@ -12,6 +12,7 @@
 
 #include <nlohmann/json.hpp>
 
+#include "solver/core/richardson.hpp"
 #include "study/study_def.hpp"
 #include "study/study_run.hpp"
 
@@ -60,8 +61,9 @@ struct Measures {
 // 1.16-2.68, duration 1.23-3.18), bracketed as [1.2, 2.7].
 inline constexpr double kAssumedOrderLow = 1.2, kAssumedOrderHigh = 2.7;
 // An observed order (three refined levels) outside this range is not trusted (oscillating or
-// pre-asymptotic levels): the two finest levels are extrapolated with the assumed bracket.
-inline constexpr double kObservedOrderMin = 0.5, kObservedOrderMax = 5.0;
+// pre-asymptotic levels): the two finest levels are extrapolated with the assumed bracket. The
+// range, and why, is the cross-checks' (solver/core/richardson.hpp).
+inline constexpr double kObservedOrderMin = kTrustedOrderMin, kObservedOrderMax = kTrustedOrderMax;
 // Roache's safety factor on the error of a three-level extrapolation at its observed order
 // (Roache 1998, "Verification and Validation in Computational Science", GCI with Fs = 1.25).
 inline constexpr double kSafetyObserved = 1.25;

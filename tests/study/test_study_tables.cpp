@@ -179,6 +179,74 @@ TEST(Richardson, TheReportsThreeLevelRuleAgreesWithTheStudysOnAPowerLaw) {
   EXPECT_FALSE(richardson({0.08, 0.04, 0.02}, {100.0, 90.0, 95.0}).observed);
 }
 
+// The cross-checks' rule (solver/core/richardson.hpp, richardson_estimate): Richardson's limit
+// only at an observed order within [kTrustedOrderMin, kTrustedOrderMax]; otherwise the finest
+// level, with an error never below its last change.
+TEST(Richardson, TheCrossCheckEstimateTakesTheLimitAtAnOrderOfTwo) {
+  const double r = std::sqrt(2.0);
+  // 300 + 40 h² at h = 1, 1/√2, 1/2: 340, 320, 310, changes 20 then 10 (q = 2, order 2).
+  const RichardsonEstimate e = richardson_estimate(340.0, 320.0, 310.0, r);
+  EXPECT_TRUE(e.trusted);
+  EXPECT_NEAR(e.order, 2.0, 1e-12);
+  EXPECT_NEAR(e.value, 300.0, 1e-12);
+  EXPECT_NEAR(e.error, 10.0, 1e-12);  // the finest level's distance from the limit
+  // And on the power laws of the study's test above, at the ends of the trusted range's interior.
+  const std::vector<double> h = {0.04, 0.04 / r, 0.02};
+  for (double p : {0.6, 1.0, 2.7, 4.9}) {
+    const std::vector<double> v = sequence(h, 0.05, 0.8, p);
+    const RichardsonEstimate t = richardson_estimate(v[0], v[1], v[2], r);
+    EXPECT_TRUE(t.trusted) << p;
+    EXPECT_NEAR(t.value, 0.05, 1e-12) << p;
+  }
+}
+
+TEST(Richardson, TheCrossCheckEstimateRefusesAStall) {
+  // The scan AAA's asperity peak (reports/peers/calculix/README.md): a change of 58 last changes
+  // then one, q = 58, "order" log 58 / log √2 = 11.7. Richardson's limit would lie 1/57 of the
+  // last change beyond the finest level and claim that as its error: a stall, not a rate.
+  const double r = std::sqrt(2.0), d = 0.085, f1 = 63.25, f2 = f1 - 58 * d, f3 = f2 - d;
+  const RichardsonRate rate = richardson_rate(f1, f2, f3, r);
+  EXPECT_NEAR(rate.order, std::log(58.0) / std::log(r), 1e-9);
+  EXPECT_LT(std::abs(rate.finest_error), d / 50);  // what the old rule took as the error
+  const RichardsonEstimate e = richardson_estimate(f1, f2, f3, r);
+  EXPECT_FALSE(e.trusted);
+  EXPECT_NEAR(e.order, rate.order, 1e-12);  // printed, not used
+  EXPECT_EQ(e.value, f3);
+  EXPECT_GE(e.error, d);
+  EXPECT_NEAR(e.error, 3 * d, 1e-12);  // Roache's Fs = 3 at order 2: 3 last changes at √2
+  // Just beyond the range's top (order 5.1) the same; just inside (4.9) Richardson's limit.
+  for (double p : {4.9, 5.1}) {
+    const double q = std::pow(r, p);
+    const RichardsonEstimate b = richardson_estimate(10 + q + 1, 11.0, 10.0, r);
+    EXPECT_EQ(b.trusted, p < kTrustedOrderMax) << p;
+    EXPECT_GE(b.error, b.trusted ? 0.0 : 1.0) << p;
+  }
+  // Below the range (order 0.3: the limit 8.9 last changes out) also refused.
+  const double slow = std::pow(r, 0.3);
+  EXPECT_FALSE(richardson_estimate(10 + slow + 1, 11.0, 10.0, r).trusted);
+}
+
+TEST(Richardson, TheCrossCheckEstimateRefusesAlternatingAndGrowingChanges) {
+  const double r = std::sqrt(2.0);
+  // Alternating (−10, then +5): no order; the finest level, ± 3 last changes.
+  const RichardsonEstimate alternating = richardson_estimate(100.0, 90.0, 95.0, r);
+  EXPECT_FALSE(alternating.trusted);
+  EXPECT_TRUE(std::isnan(alternating.order));
+  EXPECT_EQ(alternating.value, 95.0);
+  EXPECT_NEAR(alternating.error, 15.0, 1e-12);
+  // Growing (1, then 2: q = 1/2, order −2): Richardson's formula would extrapolate backwards.
+  const RichardsonEstimate growing = richardson_estimate(100.0, 99.0, 97.0, r);
+  EXPECT_FALSE(growing.trusted);
+  EXPECT_EQ(growing.value, 97.0);
+  EXPECT_GE(growing.error, 2.0);
+  // At a coarser ratio the GCI band 3/(r² − 1) falls below one last change (r = 3: 0.375); the
+  // rule keeps the last change as the floor.
+  EXPECT_NEAR(richardson_estimate(100.0, 90.0, 95.0, 3.0).error, 5.0, 1e-12);
+  // The study's rule refuses the same range (study_cases.hpp reads these constants).
+  EXPECT_EQ(kObservedOrderMin, kTrustedOrderMin);
+  EXPECT_EQ(kObservedOrderMax, kTrustedOrderMax);
+}
+
 }  // namespace richardson_tests
 
 // The geometry term of the reference (tables/study_cases.hpp, docs/study.md "Guidelines" and "The
