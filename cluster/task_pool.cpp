@@ -45,11 +45,11 @@ TaskReport from_json(const Json& j) {
 
 TaskReport timed_run(const std::function<TaskReport(int)>& run, int task, int rank) {
   const auto t0 = Clock::now();
-  const double cpu0 = thread_cpu_seconds();
+  const double cpu0 = thread_and_children_cpu_seconds();
   TaskReport r = run(task);
   r.task = task;
   r.rank = rank;
-  r.cpu_seconds = thread_cpu_seconds() - cpu0;
+  r.cpu_seconds = thread_and_children_cpu_seconds() - cpu0;
   r.busy_seconds = since(t0);
   return r;
 }

@@ -21,7 +21,7 @@ struct TaskReport {
   int task = -1;
   int rank = 0;
   bool failed = false, skipped = false;  // skipped: done by an earlier run, kept
-  double cpu_seconds = 0;                // the worker thread's CPU for this task
+  double cpu_seconds = 0;                // the worker's CPU on it, its TetGen children's in
   double busy_seconds = 0;               // wall time the worker spent on it
   std::string note;                      // one line for the progress display
   std::string payload;

@@ -40,7 +40,7 @@ std::vector<MeshStep> mesh_steps(const StudyDef& def, std::size_t index,
   std::vector<MeshStep> out;
   for (const long n : faces) {
     MeshStep r{.particle = def.particles[index].name, .faces = n, .c = p_wave_speed(def.material)};
-    const double cpu0 = thread_cpu_seconds();
+    const double cpu0 = thread_and_children_cpu_seconds();
     try {
       const geometry::PreparedParticle p = particle_mesh(source, r.particle, n);
       r.tets = p.tets.tets.cols();
@@ -88,7 +88,7 @@ std::vector<MeshStep> mesh_steps(const StudyDef& def, std::size_t index,
     } catch (const std::exception& e) {
       r.error = e.what();
     }
-    r.seconds = thread_cpu_seconds() - cpu0;
+    r.seconds = thread_and_children_cpu_seconds() - cpu0;
     out.push_back(r);
   }
   return out;

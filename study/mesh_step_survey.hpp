@@ -35,7 +35,7 @@ struct MeshStep {
   // step, the least penalty factor of any contact tetrahedron, the mass added / the body's.
   double dt_face = 0, face_scale_min = 1, dt_mass = 0, mass_added = 0;
   double dt_critical_study = 0;  // s, both together at the study's α (= 10 when unset)
-  double seconds = 0;            // CPU of meshing and the step prediction
+  double seconds = 0;            // CPU of meshing (TetGen's children in) and the step prediction
   std::string error;             // non-empty: the mesher (or the world) failed; nothing above
   double element_ratio() const { return dt_element * c / h; }
   double critical_ratio() const { return dt_critical * c / h; }

@@ -648,7 +648,7 @@ cluster::TaskReport make_mesh(const StudyDef& def, const fs::path& out, const Me
   const std::string tag = source_tag(def, p, t.particle);
   const std::string label = p.name + " " + std::to_string(t.faces);
   const fs::path dir = mesh_dir(out, p.name, t.faces);
-  const double cpu0 = thread_cpu_seconds();
+  const double cpu0 = thread_and_children_cpu_seconds();
   try {
     const fs::path report = dir / "mesh.json";
     if (fs::exists(report)) {
@@ -672,7 +672,7 @@ cluster::TaskReport make_mesh(const StudyDef& def, const fs::path& out, const Me
                                         prepared.props.equivalent_radius);
     j["dt_estimate_rigid"] =
         estimated_dt(prepared.tets, def, fdem::BodyKind::rigid, prepared.props.equivalent_radius);
-    j["mesh_cpu_seconds"] = thread_cpu_seconds() - cpu0;
+    j["mesh_cpu_seconds"] = thread_and_children_cpu_seconds() - cpu0;
     io::write_atomically(report, j.dump(1) + "\n");
     return {.note = label + " triangles"};
   } catch (const std::exception& e) {
@@ -706,7 +706,7 @@ cluster::TaskReport make_source_mesh(const StudyDef& def, const fs::path& out, c
       << " material=" << material_json(def.material).dump();
   const std::string label = p.name + (t.source_patch == 1 ? " source" : " source-patch2");
   const fs::path dir = source_mesh_dir(out, p.name, t.source_patch);
-  const double cpu0 = thread_cpu_seconds();
+  const double cpu0 = thread_and_children_cpu_seconds();
   try {
     const fs::path report = dir / "mesh.json";
     if (fs::exists(report) && io::read_json_file(report).value("study_source", "") == tag.str()) {
@@ -737,7 +737,7 @@ cluster::TaskReport make_source_mesh(const StudyDef& def, const fs::path& out, c
         {"hertz_peak_force", plan.peak_force},
         {"contact_edge", plan.contact_edge},
         {"element_sizes", plan.sizes},
-        {"mesh_cpu_seconds", thread_cpu_seconds() - cpu0}};
+        {"mesh_cpu_seconds", thread_and_children_cpu_seconds() - cpu0}};
     io::write_atomically(report, j.dump(1) + "\n");
     return {.note = label + " surface"};
   } catch (const std::exception& e) {
@@ -882,12 +882,13 @@ cluster::TaskReport run_case(const StudyDef& def, const fs::path& out, const Par
       io::remove_earlier_output(dir / f);
     io::write_atomically(dir / "scene.json", scene_text);
     const scene::SceneDef scene = scene::load_scene(dir / "scene.json");
-    const double cpu0 = thread_cpu_seconds(), kept0 = run::kept_mesh_cpu_seconds();
+    const double cpu0 = thread_and_children_cpu_seconds(), kept0 = run::kept_mesh_cpu_seconds();
     run::RunResult result = run::run_scene(scene, run::RunOptions{});
-    // The case's CPU on this worker thread, its meshing included even where this process had made
-    // the mesh for an earlier case (the rigid and rigid-penalty cases of one resolution share it):
-    // what the case costs alone, whichever ran first.
-    const double cpu = thread_cpu_seconds() - cpu0 + (run::kept_mesh_cpu_seconds() - kept0);
+    // The case's CPU on this worker thread with its TetGen children's, its meshing included even
+    // where this process had made the mesh for an earlier case (the rigid and rigid-penalty cases
+    // of one resolution share it): what the case costs alone, whichever ran first.
+    const double cpu =
+        thread_and_children_cpu_seconds() - cpu0 + (run::kept_mesh_cpu_seconds() - kept0);
     thin_rows(result, def.rows);
     run::write_outputs(result, dir);
     // The study's own facts of the case (its CPU on this thread, where the run's cpu_seconds counts

@@ -14,10 +14,12 @@
 #include <poll.h>
 #include <signal.h>
 #include <sys/prctl.h>
+#include <sys/resource.h>
 #include <sys/wait.h>
 #include <tetgen.h>
 #include <unistd.h>
 
+#include "solver/core/clock.hpp"
 #include "solver/core/error.hpp"
 
 namespace asperity::geometry {
@@ -295,8 +297,16 @@ IsolatedResult run_tetgen_isolated(const TetgenJob& job, double seconds) {
   }
   for (const pollfd& q : p)
     if (q.fd >= 0) close(q.fd);
+  // The child's CPU is in none of this thread's clocks: its own usage (wait4's, that child's
+  // alone) goes to the thread's waited-for children, so that whoever times this thread's work
+  // (a study case, a mesh) counts the meshing, a killed child's spent budget too.
   int status = 0;
-  waitpid(pid, &status, 0);
+  rusage usage{};
+  if (wait4(pid, &status, 0, &usage) == pid) {
+    add_waited_child_cpu(static_cast<double>(usage.ru_utime.tv_sec + usage.ru_stime.tv_sec) +
+                         1e-6 *
+                             static_cast<double>(usage.ru_utime.tv_usec + usage.ru_stime.tv_usec));
+  }
   if (result.timed_out) {
     result.failure = "TetGen did not finish within its time budget of " +
                      std::to_string(static_cast<long>(seconds)) + " s";

@@ -42,7 +42,8 @@ long steiner_points(const TetgenJob& job, const TetMesh& mesh);
 // trip one during facet recovery (e.g. removeedgebyflips on a 2000-triangle ballast particle
 // with lift walls): abort() would end the whole program, a study included. Quality refinement
 // with an unattainable bound never ends (issue 18): the child is killed after `seconds` of wall
-// time. The child sends the mesh back through a pipe.
+// time. The child sends the mesh back through a pipe. Its user + system CPU, which no clock of
+// the calling thread sees, is added to the thread's waited_children_cpu_seconds (core/clock.hpp).
 struct IsolatedResult {
   std::optional<TetMesh> mesh;
   bool timed_out = false;

@@ -32,11 +32,12 @@ constexpr std::uintmax_t kMaxKeyBytes = 64u << 20;
 // is still making them waits for them. Meshes past kKeptBytes are dropped, oldest first; a file
 // over kMaxKeyBytes, or one that cannot be read, is not kept (the pipeline then names its problem).
 //
-// What a kept mesh cost its maker (the maker thread's CPU in make()) is kept with it, and a thread
-// that takes it adds that to its kept_mesh_cpu (kept_mesh_cpu_seconds): a study case timed by its
-// thread's CPU then costs what it would cost alone, whichever case of the same mesh ran first (the
-// study's rigid and rigid-penalty cases share theirs: the second measured 0.018 s instead of 1.9 s
-// at 2000 faces, 0.6 % of its cost, before this).
+// What a kept mesh cost its maker (the maker thread's CPU in make(), its TetGen children's with
+// it) is kept with it, and a thread that takes it adds that to its kept_mesh_cpu
+// (kept_mesh_cpu_seconds): a study case timed by its thread's CPU then costs what it would cost
+// alone, whichever case of the same mesh ran first (the study's rigid and rigid-penalty cases share
+// theirs: the second measured 0.018 s instead of 1.9 s at 2000 faces, 0.6 % of its cost, before
+// this).
 thread_local double kept_mesh_cpu = 0;
 
 class PreparedMeshes {
@@ -70,9 +71,9 @@ class PreparedMeshes {
       }
     }
     try {
-      const double cpu0 = thread_cpu_seconds();
+      const double cpu0 = thread_and_children_cpu_seconds();
       TetMesh tets = make();
-      promise.set_value({.tets = tets, .cpu_seconds = thread_cpu_seconds() - cpu0});
+      promise.set_value({.tets = tets, .cpu_seconds = thread_and_children_cpu_seconds() - cpu0});
       const std::lock_guard<std::mutex> lock(mutex_);
       mine->second.kept_bytes =
           mine->first.bytes.size() + static_cast<std::size_t>(tets.nodes.size()) * sizeof(double) +
@@ -101,7 +102,7 @@ class PreparedMeshes {
  private:
   struct Made {
     TetMesh tets;
-    double cpu_seconds = 0;  // the maker thread's CPU in make()
+    double cpu_seconds = 0;  // the maker thread's CPU in make(), its TetGen children's with it
   };
   struct Entry {
     std::shared_future<Made> mesh;
