@@ -39,12 +39,17 @@ struct SourceReferencePlan {
   std::vector<double> sizes;  // element sizes at the strike point, m, descending (halving)
 };
 
+// The least elements across Hertz's contact radius the coarsest level may have where the source
+// does not resolve the contact (plan_source_reference).
+inline constexpr double kCoarsestAcross = 1.5;
+
 // The plan for `source` (closed, outward, in the placement's frame: it falls along −z onto a
 // rigid block) of `particle`'s material at `speed` (m/s): Hertz's impact of a sphere of the
 // local radius and the particle's mass on a rigid half-space (Johnson 1985, §11.4:
 // δ = (15 m v² / (16 E* √R))^{2/5}, a = √(R δ), E* = E/(1 − ν²)), the finest size
 // a / elements_across and each coarser level twice the next; where contact_edge is over √2 times
-// that finest size, all of them halved again until the coarsest is no larger than it: the surface
+// that finest size, all of them halved again until the coarsest is no larger than it nor than
+// a / kCoarsestAcross: the surface
 // is bisected only where the element size is below its triangles (geometry::subdivide_surface), so
 // a level coarser than the source's own triangles refines the interior alone and the contact
 // surface stays the source's fan. On ballast_01 (a = 2.19 mm, source edges 1.46–1.61 mm there) the

@@ -169,9 +169,10 @@ TEST(SourceReferenceTerms, ThePeakIsRingingFreeAndCarriesTheFiltersShapeTerm) {
 // triangles (20 480 and 1280 faces, the set's shape numbers): every level at most the source's
 // own edge at the contact, so each refines the contact surface (the mesher bisects the surface
 // only where the size is below its triangles; ballast_01's a/0.75 level left the strike point's
-// fan of 7 vertices as the whole contact: docs/study.md); the coarsest no finer than needed (the
-// next coarser would exceed that edge, or it is the a/elements_across ladder itself); the finest
-// at most a/3 (issue 28: at least 3 elements across Hertz's contact radius at peak); halving.
+// fan of 7 vertices as the whole contact: docs/study.md), and at most a / kCoarsestAcross (1.5
+// elements across the contact radius); the coarsest no finer than needed (the next coarser would
+// exceed one of the two, or it is the a/elements_across ladder itself); the finest at most a/3
+// (issue 28: at least 3 elements across Hertz's contact radius at peak); halving.
 TEST(SourceReferencePlan, EveryLevelRefinesTheSourcesOwnTrianglesAtTheContact) {
   const Material rock{.name = "rock", .density = 2650, .young = 50e9, .poisson = 0.25};
   for (long faces : {20480L, 1280L}) {
@@ -183,8 +184,9 @@ TEST(SourceReferencePlan, EveryLevelRefinesTheSourcesOwnTrianglesAtTheContact) {
     EXPECT_GT(plan.contact_edge, 0) << faces;
     // Both sources here are coarser than the finest size (ballast-like, 20 480 or 1280 faces).
     ASSERT_GT(plan.contact_edge, std::sqrt(2.0) * ladder) << faces;
-    EXPECT_LE(plan.sizes.front(), plan.contact_edge) << faces;
-    EXPECT_TRUE(2 * plan.sizes.front() > plan.contact_edge ||
+    const double within = std::min(plan.contact_edge, plan.contact_radius / kCoarsestAcross);
+    EXPECT_LE(plan.sizes.front(), within * (1 + kRoundOff)) << faces;
+    EXPECT_TRUE(2 * plan.sizes.front() > within ||
                 std::abs(plan.sizes.back() - ladder) <= kRoundOff * ladder)
         << faces << ": coarsest " << plan.sizes.front() << " m, contact edge " << plan.contact_edge
         << " m";
