@@ -402,7 +402,7 @@ def class_examples(study, out, cases, classification, doc):
         ax.legend(fontsize=6)
     fig.tight_layout()
     save_chart(fig, out, "class_examples.png", 80)
-    doc.image("class_examples.png", "One example of each response class met, against the converged fem reference "
+    doc.image("class_examples.png", f"One example of each response class met, against {REFERENCE['name']} "
               "(its finest refined level): " + ", ".join(f"{label}: {r['particle']} {r['model']} {r['resolution']}"
                                                           for label, r in picks))
     missing = [label for label in CLASS_MEASURE if label not in {p[0] for p in picks}]
@@ -500,8 +500,8 @@ def accuracy_cost_chart(out, candidates, uncertainty, doc):
             ax.grid(True, which="both", alpha=0.3)
     fig.tight_layout()
     save_chart(fig, out, "accuracy_vs_cost.png", 80)
-    doc.image("accuracy_vs_cost.png", "Accuracy against cost: error in peak force and impulse against the converged "
-              "fem reference, against CPU time, every model, resolution and element size; the grey band is the "
+    doc.image("accuracy_vs_cost.png", "Accuracy against cost: error in peak force and impulse against "
+              f"{REFERENCE['name']}, against CPU time, every model, resolution and element size; the grey band is the "
               "reference's own uncertainty; the reference itself (error 0) is not drawn")
 
 
@@ -716,7 +716,9 @@ def answer_section(doc, study, published):
     over = (f" Each particle is studied at {k} random orientations, each against its own reference: 'particles' below "
             f"are the {len(definition['particles'])} particle-orientations ({len(definition['particles']) // k} "
             f"particles x {k}), so each error is a distribution over particles and orientations." if k else "")
-    doc.p(f"To get within X % of the converged fem reference (placed by {pl}), use the cheapest model below; "
+    against = ("the particle itself (its source reference)"
+               if definition.get("reference") == "source" else "the converged fem reference")
+    doc.p(f"To get within X % of {against}, placed by {pl}, use the cheapest model below; "
           "'median' holds for half the particles, 'p90' for 90 % of them. Each entry: model, surface triangles, "
           "element size at the strike point over the equivalent radius when refined, its error "
           "± the reference's uncertainty (same statistic), its median CPU per case; 'none of the studied' where no "
@@ -868,6 +870,10 @@ def references_section(doc, references, growth, contact_factor=0):
               "on the peak force).")
 
 
+# What the errors are against, set by main() from the study's definition ("reference": "finest" or "source").
+REFERENCE = {"name": "the converged fem reference"}
+
+
 def main():
     ap = argparse.ArgumentParser(description=__doc__)
     ap.add_argument("study")
@@ -890,6 +896,9 @@ def main():
     classification = read_csv(os.path.join(a.study, "classification.csv"))
     with open(os.path.join(a.study, "study_summary.json")) as fh:
         summary = json.load(fh)
+    with open(os.path.join(a.study, "study.json")) as fh:
+        if json.load(fh).get("reference") == "source":
+            REFERENCE["name"] = "the particle itself (its source reference)"
 
     for t in TABLES:
         write_markdown_table(os.path.join(a.study, t), os.path.join(a.out, t[:-4] + ".md"))
@@ -903,15 +912,19 @@ def main():
     answer_section(doc, a.study, summary["published"])
     axes_section(doc, a.study, cases)
     with open(os.path.join(a.study, "study.json")) as fh:
-        refinement = json.load(fh).get("refinement") or {}
+        definition = json.load(fh)
+    refinement = definition.get("refinement") or {}
+    reference_is = ("the particle itself: the Richardson limit of its source surface's three refined levels "
+                    "('The reference and its uncertainty' above)" if definition.get("reference") == "source" else
+                    "the limit of the fem refinement sequence (refined at the strike point, extrapolated as above) at "
+                    "the finest resolution")
     references_section(doc, read_csv(os.path.join(a.study, "references.csv")), refinement.get("growth"),
                        refinement.get("max_contact_factor") or 0)
     doc.p(f"{summary['particles']} particles x resolutions {summary['resolutions']} x models "
           f"{', '.join(summary['models'])} x placements {', '.join(summary['placements'])}: {summary['cases']} cases, "
           f"{summary['done']} done, {summary['failed']} failed. Each particle is launched straight down onto a fixed "
           "block under gravity. Errors are relative to the finest resolution of the same model (err) and to the "
-          "reference (err_fem): the limit of the fem refinement sequence (refined at the strike point, extrapolated "
-          "as above) at the finest resolution, same placement (docs/study.md). The sphere, rigid and sphere-local "
+          f"reference (err_fem): {reference_is}, same placement (docs/study.md). The sphere, rigid and sphere-local "
           "models strike a rigid block, as the fem does. "
           "Tables: cases, references, classification, particle_classes, cpu_fit, candidates, guidelines, discretization, "
           "answer, few_hundred, as CSV and as Markdown "
@@ -939,7 +952,7 @@ def main():
     cpu_chart(a.out, cases, fits, doc)
 
     doc.h(2, "Accuracy against cost")
-    doc.p("Median over the particles of |error| against the converged fem reference, and its 90th percentile, "
+    doc.p(f"Median over the particles of |error| against {REFERENCE['name']}, and its 90th percentile, "
           "against the median CPU time of each model, resolution and element size.")
     accuracy_cost_chart(a.out, candidates, uncertainty, doc)
     doc.table(["placement", "model", "resolution", "h/R", "particles", "peak err median", "peak err p90",
@@ -953,7 +966,7 @@ def main():
     doc.h(2, "Guidelines")
     doc.p("For each tolerance on peak force, impulse, contact duration, first-contact time (its shift over the "
           "reference's contact duration) or peak force and impulse together, the cheapest model, resolution and "
-          "element size (lowest median CPU) whose |error| against the converged fem reference stays within it for "
+          f"element size (lowest median CPU) whose |error| against {REFERENCE['name']} stays within it for "
           "half the particles (median) or for 90 % of them (p90), with the reference's own uncertainty (same "
           "statistic over the particles). 'reference' means nothing cheaper met it; 'unresolved' that the "
           "reference is uncertain by more than the tolerance.")
@@ -969,8 +982,8 @@ def main():
         penalty_section(a.out, a.penalty, doc)
 
     doc.h(2, "Response classes")
-    doc.p("Each model's force curve at each resolution (fem: the coarse default) against the converged fem "
-          "reference (the thick grey curve in the overlays below): shifted when the first contact comes more than "
+    doc.p("Each model's force curve at each resolution (fem: the coarse default) against "
+          f"{REFERENCE['name']} (the thick grey curve in the overlays below): shifted when the first contact comes more than "
           "5 % of the reference contact duration earlier or later (the 5 % tolerance of the first-contact "
           "guideline); tail when the contact lasts more than 10 % longer, short when more than 10 % shorter (the "
           "10 % tolerance on contact duration: a short pulse is the stiff response, which the cross-correlation "
