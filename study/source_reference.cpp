@@ -5,6 +5,7 @@
 #include <cmath>
 
 #include "solver/contact/hertz_impact.hpp"
+#include "solver/core/richardson.hpp"
 #include "solver/geometry/local_curvature.hpp"
 #include "solver/geometry/mass_properties.hpp"
 #include "solver/run/impact_measures.hpp"
@@ -104,11 +105,14 @@ SourceMetric metric(const std::vector<double>& sizes, const std::vector<SourceLe
   m.limit = tables::richardson(sizes, v);
   m.discretization = m.limit.error;
   const std::size_t n = v.size();
-  if (!m.limit.observed && n >= 3 && (v[n - 1] - v[n - 2]) * (v[n - 2] - v[n - 3]) < 0 &&
-      std::isfinite(m.limit.limit) && m.limit.limit != 0) {
-    // Changes that alternate in sign (the header): at least the last change.
+  if (!m.limit.observed && n >= 2 && std::isfinite(m.limit.limit) && m.limit.limit != 0) {
+    // An order not trusted (the header): at least the untrusted band of the cross-checks'
+    // rule, Roache's Fs = 3 at the formal order 2 over the two finest levels
+    // (solver/core/richardson.hpp), which at the ratio 2 is the last change itself.
+    const double r = sizes[n - 2] / sizes[n - 1];
+    const double band = std::max(1.0, kUntrustedSafety / (std::pow(r, kFormalOrder) - 1));
     m.discretization =
-        std::max(m.discretization, std::abs(v[n - 1] - v[n - 2]) / std::abs(m.limit.limit));
+        std::max(m.discretization, band * std::abs(v[n - 1] - v[n - 2]) / std::abs(m.limit.limit));
   }
   const double p = m.limit.changes_order;
   if (!m.limit.observed && std::isfinite(p) && p < tables::kObservedOrderMin && n >= 2 &&

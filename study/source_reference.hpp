@@ -99,9 +99,13 @@ SourceLevel source_level(double filtered_peak_force, double impulse, double cont
 // (ballast_01: changes −217, −183 N, order 0.24, the bracket's ±0.35 % against a limit 6 % lower
 // at the levels' own order). There it is at least the distance from the bracket's limit to the
 // limit at the levels' own order: a reference that has not converged says so in its uncertainty.
-// Where the changes alternate in sign, the bracket extrapolates the last change only, whose sign
-// says nothing of the limit's side: the term is then at least that last change (rock_04, filtered
-// peaks 176 910, 173 370, 173 637 N: the bracket's spread 0.045 %, the last change 0.15 %).
+// Wherever the order is not trusted (alternating or growing changes, or an order outside the
+// trusted range), the bracket extrapolates the last change at orders it assumes, and its half
+// spread (about 0.3 of that change at the ratio 2) is no bound: the term is then at least the
+// cross-checks' untrusted band (solver/core/richardson.hpp, Roache's Fs = 3 at the formal order
+// 2), at the ratio 2 the last change itself. rock_04, filtered peaks 176 910, 173 370, 173 637 N
+// (alternating): the bracket's 0.045 %, the last change 0.15 %; E34, 66 907, 62 739, 62 703 N
+// (order 6.86): 0.017 % and 0.06 %.
 //
 // filter (relative; peak force only, 0 for the others): how far the filter's bias on the actual
 // pulse may lie from Hertz's, which source_level corrects: the difference between a half-sine's

@@ -134,7 +134,7 @@ TEST(SourceReferenceTerms, ASlowlyConvergingReferenceCarriesItsDistanceToTheLimi
   EXPECT_DOUBLE_EQ(q.peak_force.discretization, q.peak_force.limit.error);
 }
 
-TEST(SourceReferenceTerms, AlternatingChangesCarryAtLeastTheLastChange) {
+TEST(SourceReferenceTerms, AnUntrustedOrderCarriesAtLeastTheLastChange) {
   // rock_04's filtered peaks (6 December 2026): −2.0 %, then +0.15 %: no observed order, the
   // bracket's limit, and a discretization term of at least the last change over the limit, where
   // the bracket's half spread alone is about 0.3 of it.
@@ -143,10 +143,20 @@ TEST(SourceReferenceTerms, AlternatingChangesCarryAtLeastTheLastChange) {
   const SourceReference r = source_reference(kSizes, patch, {});
   ASSERT_FALSE(r.peak_force.limit.observed);
   EXPECT_LT(r.peak_force.limit.error, 0.5 * 267 / r.peak_force.limit.limit);
-  EXPECT_NEAR(r.peak_force.discretization, 267 / r.peak_force.limit.limit, kRoundOff);
+  // The band at the sizes' last ratio, 1.9995: 3 / (r² − 1) = 1.0006 last changes.
+  const double r2 = kSizes[1] / kSizes[2], band = 3 / (r2 * r2 - 1);
+  EXPECT_NEAR(r.peak_force.discretization, band * 267 / r.peak_force.limit.limit, kRoundOff);
   // Changes of one sign at a trusted order keep richardson's error.
   const SourceReference q = source_reference(kSizes, levels(1000, 4000, 1.3), {});
   EXPECT_DOUBLE_EQ(q.peak_force.discretization, q.peak_force.limit.error);
+  // An order above the trusted range (E34's filtered peaks at a/1.5, a/3, a/6: order 6.86): at
+  // least the last change too.
+  std::vector<SourceLevel> steep = {
+      {.peak_force = 66907}, {.peak_force = 62739}, {.peak_force = 62703}};
+  const SourceReference e = source_reference(kSizes, steep, {});
+  ASSERT_FALSE(e.peak_force.limit.observed);
+  EXPECT_GT(e.peak_force.limit.changes_order, 6.8);
+  EXPECT_NEAR(e.peak_force.discretization, band * 36 / e.peak_force.limit.limit, kRoundOff);
 }
 
 // A level's peak is its ringing-free peak (source_level): the filtered peak over 1 minus the
