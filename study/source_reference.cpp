@@ -106,22 +106,18 @@ SourceMetric metric(const std::vector<double>& sizes, const std::vector<SourceLe
   m.discretization = m.limit.error;
   const std::size_t n = v.size();
   if (!m.limit.observed && n >= 2 && std::isfinite(m.limit.limit) && m.limit.limit != 0) {
-    // An order not trusted (the header): at least the untrusted band of the cross-checks'
-    // rule, Roache's Fs = 3 at the formal order 2 over the two finest levels
+    const double r = sizes[n - 2] / sizes[n - 1], last = v[n - 1] - v[n - 2];
+    // An order not trusted (the header): at least the untrusted band of the cross-checks' rule
     // (solver/core/richardson.hpp), which at the ratio 2 is the last change itself.
-    const double r = sizes[n - 2] / sizes[n - 1];
-    const double band = std::max(1.0, kUntrustedSafety / (std::pow(r, kFormalOrder) - 1));
     m.discretization =
-        std::max(m.discretization, band * std::abs(v[n - 1] - v[n - 2]) / std::abs(m.limit.limit));
-  }
-  const double p = m.limit.changes_order;
-  if (!m.limit.observed && std::isfinite(p) && p < tables::kObservedOrderMin && n >= 2 &&
-      std::isfinite(m.limit.limit) && m.limit.limit != 0) {
-    // Converging too slowly for the bracket (the header): the limit at the levels' own order.
-    const double own =
-        v[n - 1] + (v[n - 1] - v[n - 2]) / (std::pow(sizes[n - 2] / sizes[n - 1], p) - 1);
-    m.discretization =
-        std::max(m.discretization, std::abs(own - m.limit.limit) / std::abs(m.limit.limit));
+        std::max(m.discretization, untrusted_band(r) * std::abs(last) / std::abs(m.limit.limit));
+    const double p = m.limit.changes_order;
+    if (std::isfinite(p) && p < tables::kObservedOrderMin) {
+      // Converging too slowly for the bracket (the header): the limit at the levels' own order.
+      const double own = v[n - 1] + last / (std::pow(r, p) - 1);
+      m.discretization =
+          std::max(m.discretization, std::abs(own - m.limit.limit) / std::abs(m.limit.limit));
+    }
   }
   if (value == &SourceLevel::peak_force)
     m.filter = run::kFilteredPeakBiasHertz - run::kFilteredPeakBiasHalfSine;

@@ -56,6 +56,11 @@ inline constexpr double kTrustedOrderMin = 0.5, kTrustedOrderMax = 5.0;
 // r = √2 that is 3 last changes: the distance to the limit at any order above 0.83 (1 last change
 // at order 2, 2.4 at order 1, the particles' order), not a claim that the levels converge at 2.
 inline constexpr double kUntrustedSafety = 3.0, kFormalOrder = 2.0;
+// That band in last changes at the refinement ratio r: Fs / (r^p − 1), never below 1 (3 at √2,
+// 1 at 2).
+inline double untrusted_band(double r) {
+  return std::max(1.0, kUntrustedSafety / (std::pow(r, kFormalOrder) - 1));
+}
 
 // A cross-check's estimate from three levels (asperity's against a peer's:
 // tests/peers/test_calculix.cpp): where the observed order lies in
@@ -78,10 +83,7 @@ inline RichardsonEstimate richardson_estimate(double e1, double e2, double e3, d
             .error = std::abs(rate.finest_error),
             .order = rate.order,
             .trusted = true};
-  const double last = std::abs(e2 - e3);
-  return {.value = e3,
-          .error = std::max(1.0, kUntrustedSafety / (std::pow(r, kFormalOrder) - 1)) * last,
-          .order = rate.order};
+  return {.value = e3, .error = untrusted_band(r) * std::abs(e2 - e3), .order = rate.order};
 }
 
 }  // namespace asperity

@@ -716,9 +716,7 @@ def answer_section(doc, study, published):
     over = (f" Each particle is studied at {k} random orientations, each against its own reference: 'particles' below "
             f"are the {len(definition['particles'])} particle-orientations ({len(definition['particles']) // k} "
             f"particles x {k}), so each error is a distribution over particles and orientations." if k else "")
-    against = ("the particle itself (its source reference)"
-               if definition.get("reference") == "source" else "the converged fem reference")
-    doc.p(f"To get within X % of {against}, placed by {pl}, use the cheapest model below; "
+    doc.p(f"To get within X % of {REFERENCE['name']}, placed by {pl}, use the cheapest model below; "
           "'median' holds for half the particles, 'p90' for 90 % of them. Each entry: model, surface triangles, "
           "element size at the strike point over the equivalent radius when refined, its error "
           "± the reference's uncertainty (same statistic), its median CPU per case; 'none of the studied' where no "
@@ -897,8 +895,9 @@ def main():
     with open(os.path.join(a.study, "study_summary.json")) as fh:
         summary = json.load(fh)
     with open(os.path.join(a.study, "study.json")) as fh:
-        if json.load(fh).get("reference") == "source":
-            REFERENCE["name"] = "the particle itself (its source reference)"
+        definition = json.load(fh)
+    if definition.get("reference") == "source":
+        REFERENCE["name"] = "the particle itself (its source reference)"
 
     for t in TABLES:
         write_markdown_table(os.path.join(a.study, t), os.path.join(a.out, t[:-4] + ".md"))
@@ -911,8 +910,6 @@ def main():
     geometry_section(doc, a.study, a.out)
     answer_section(doc, a.study, summary["published"])
     axes_section(doc, a.study, cases)
-    with open(os.path.join(a.study, "study.json")) as fh:
-        definition = json.load(fh)
     refinement = definition.get("refinement") or {}
     reference_is = ("the particle itself: the Richardson limit of its source surface's three refined levels "
                     "('The reference and its uncertainty' above)" if definition.get("reference") == "source" else
