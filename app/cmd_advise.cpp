@@ -6,6 +6,7 @@
 #include <cstdio>
 #include <filesystem>
 #include <memory>
+#include <optional>
 #include <string>
 #include <thread>
 
@@ -69,20 +70,45 @@ int advise_particle(const AdviseArgs& args) {
   const auto elapsed = [&] {
     return std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   };
+  // The budget is also a deadline inside an orientation: the first one, or a sharp corner whose
+  // reference costs more than the slowest so far, stops at it (its finished levels are kept and
+  // the next run resumes them) instead of running on unbounded.
+  std::optional<std::chrono::steady_clock::time_point> stop_at;
+  if (args.budget > 0) {
+    stop_at = std::chrono::steady_clock::now() +
+              std::chrono::duration_cast<std::chrono::steady_clock::duration>(
+                  std::chrono::duration<double>(60 * args.budget));
+  }
   study::StudyOutcome total;
   int done = 0;
   double slowest = 0;
+  bool stopped = false;
   for (int k = 1; k <= args.orientations; ++k) {
     if (args.budget > 0 && elapsed() + slowest > args.budget * 60) break;
     const double before = elapsed();
-    const study::StudyOutcome r = study::run_study(
-        def, args.out, {.jobs = args.jobs, .quiet = args.quiet, .shard = {k, args.orientations}});
+    const study::StudyOutcome r = study::run_study(def, args.out,
+                                                   {.jobs = args.jobs,
+                                                    .quiet = args.quiet,
+                                                    .shard = {k, args.orientations},
+                                                    .stop_at = stop_at});
     slowest = std::max(slowest, elapsed() - before);
     total.cases += r.cases;
     total.ran += r.ran;
     total.skipped += r.skipped;
     total.failed += r.failed;
+    total.postponed += r.postponed;
     total.cpu_seconds += r.cpu_seconds;
+    if (r.postponed > 0) {
+      stopped = true;
+      if (!args.quiet) {
+        std::fprintf(stderr,
+                     "advise %s: orientation %d of %d stopped by --budget (%d of its %d cases "
+                     "postponed; a rerun into %s goes on)\n",
+                     args.mesh.filename().string().c_str(), k, args.orientations, r.postponed,
+                     r.cases, args.out.string().c_str());
+      }
+      break;
+    }
     ++done;
     if (!args.quiet) {
       std::fprintf(stderr, "advise %s: orientation %d of %d done (%.0f s wall so far)\n",
@@ -94,6 +120,8 @@ int advise_particle(const AdviseArgs& args) {
   const study::tables::StudyCases cases = study::tables::load_study_cases(def, args.out);
   const nlohmann::ordered_json run_facts = {{"orientations_asked", args.orientations},
                                             {"orientations_run", done},
+                                            {"stopped_by_budget", stopped},
+                                            {"cases_postponed", total.postponed},
                                             {"cases_failed", total.failed},
                                             {"cpu_seconds", total.cpu_seconds},
                                             {"wall_seconds", total.wall_seconds},
@@ -130,7 +158,9 @@ void add_advise_command(CLI::App& app, Action& action) {
       ->capture_default_str();
   cmd->add_option("--budget", args->budget,
                   "Wall minutes: no orientation starts once the slowest so far would end past "
-                  "it (default: none)");
+                  "it, and one running at the budget stops there (its finished cases are kept; "
+                  "a rerun goes on); the advice comes from the orientations finished (default: "
+                  "none)");
   cmd->add_option("--scale", args->scale, "Multiplies the file's coordinates (0.001: mm)")
       ->capture_default_str();
   cmd->add_option("--out", args->out, "Output folder")->required();

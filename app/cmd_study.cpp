@@ -1,6 +1,7 @@
 // `asperity study STUDY.json --out DIR`: the particle-geometry sensitivity study (issue 7):
 // runs every case not done yet, on this machine's threads or over MPI ranks (docs/cluster.md),
 // then writes the study's tables (study/study_tables.hpp).
+#include <chrono>
 #include <cstdio>
 #include <filesystem>
 #include <memory>
@@ -21,6 +22,7 @@ namespace {
 struct StudyArgs {
   std::filesystem::path study, out;
   int jobs = 0;
+  double stop_after = 0;  // minutes of wall; 0: none
   std::string shard;
   bool quiet = false, allow_failed = false, collect = false;
 };
@@ -65,12 +67,34 @@ int run(const StudyArgs& args) {
     if (cluster::launched_ranks() > 1) throw InputError("--collect: run it as one process");
     return collect(def, args);
   }
+  if (args.stop_after < 0) throw InputError("--stop-after: must be > 0 minutes");
+  std::optional<std::chrono::steady_clock::time_point> stop_at;
+  if (args.stop_after > 0) {
+    stop_at = std::chrono::steady_clock::now() +
+              std::chrono::duration_cast<std::chrono::steady_clock::duration>(
+                  std::chrono::duration<double>(60 * args.stop_after));
+  }
   cluster::World world;
   return world.guard([&] {
-    const study::StudyOutcome o = study::run_study(
-        def, args.out, {.jobs = args.jobs, .quiet = args.quiet, .shard = shard, .world = &world});
-    const int code = o.failed > 0 && !args.allow_failed ? kExitFailure : kExitOk;
+    const study::StudyOutcome o = study::run_study(def, args.out,
+                                                   {.jobs = args.jobs,
+                                                    .quiet = args.quiet,
+                                                    .shard = shard,
+                                                    .world = &world,
+                                                    .stop_at = stop_at});
+    const int code =
+        (o.failed > 0 && !args.allow_failed) || o.postponed > 0 ? kExitFailure : kExitOk;
     if (!world.root()) return code;
+    if (o.postponed > 0) {
+      // Tables written now would silently leave the postponed cases out (as --collect refuses).
+      std::fprintf(stderr,
+                   "study %s: stopped after %.1f min (--stop-after): %d of %d cases postponed, "
+                   "%d run, %d kept from before, %d failed; run it again to go on; no table "
+                   "written\n",
+                   def.name.c_str(), args.stop_after, o.postponed, o.cases, o.ran, o.skipped,
+                   o.failed);
+      return code;
+    }
     // A shard's tables would hold only its cases: --collect (or a whole run) writes them.
     if (shard.count == 0) study::write_tables(def, args.out, o);
     if (!args.quiet) {
@@ -115,6 +139,11 @@ void add_study_command(CLI::App& app, Action& action) {
   cmd->add_option("--shard", args->shard,
                   "K/N: only the K-th of N shards (every N-th particle from the K-th: its meshes "
                   "and cases; no tables); shards may run side by side into one folder");
+  cmd->add_option("--stop-after", args->stop_after,
+                  "Wall minutes: no case starts after them and a running case stops within 256 "
+                  "steps; what is cut is postponed (not failed, nothing written as done), no "
+                  "table is written and the exit status is 1; the next run goes on (e.g. a "
+                  "batch job's time limit, docs/cluster.md)");
   cmd->add_flag("--collect", args->collect,
                 "Run nothing: write the tables from the cases in DIR (after the shards)");
   cmd->add_flag("-q,--quiet", args->quiet, "Only errors on stderr");

@@ -27,9 +27,9 @@ double since(Clock::time_point t0) {
 }
 
 Json to_json(const TaskReport& r) {
-  return {{"task", r.task},       {"rank", r.rank},       {"failed", r.failed},
-          {"skipped", r.skipped}, {"cpu", r.cpu_seconds}, {"busy", r.busy_seconds},
-          {"note", r.note},       {"payload", r.payload}};
+  return {{"task", r.task},         {"rank", r.rank},           {"failed", r.failed},
+          {"skipped", r.skipped},   {"postponed", r.postponed}, {"cpu", r.cpu_seconds},
+          {"busy", r.busy_seconds}, {"note", r.note},           {"payload", r.payload}};
 }
 
 TaskReport from_json(const Json& j) {
@@ -37,6 +37,7 @@ TaskReport from_json(const Json& j) {
           .rank = j.at("rank").get<int>(),
           .failed = j.at("failed").get<bool>(),
           .skipped = j.at("skipped").get<bool>(),
+          .postponed = j.at("postponed").get<bool>(),
           .cpu_seconds = j.at("cpu").get<double>(),
           .busy_seconds = j.at("busy").get<double>(),
           .note = j.at("note").get<std::string>(),

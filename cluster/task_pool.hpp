@@ -21,9 +21,12 @@ struct TaskReport {
   int task = -1;
   int rank = 0;
   bool failed = false, skipped = false;  // skipped: done by an earlier run, kept
-  double cpu_seconds = 0;                // the worker's CPU on it, its TetGen children's in
-  double busy_seconds = 0;               // wall time the worker spent on it
-  std::string note;                      // one line for the progress display
+  // postponed: not run, or stopped unfinished, because the caller's deadline passed
+  // (StudyRunOptions::stop_at): nothing written as done, left for the next run.
+  bool postponed = false;
+  double cpu_seconds = 0;   // the worker's CPU on it, its TetGen children's in
+  double busy_seconds = 0;  // wall time the worker spent on it
+  std::string note;         // one line for the progress display
   std::string payload;
 };
 

@@ -187,6 +187,12 @@ OJson write_advice(const tables::StudyCases& s, const AdviseOptions& o, const OJ
   md << "Within " << pct(o.tolerance) << " on " << o.metric << " at every one of the "
      << asked.pick.orientations << " orientations measured (of " << o.orientations
      << " asked), each against its own reference: **" << advice_text(asked) << "**.\n\n";
+  if (run.value("stopped_by_budget", false)) {
+    md << "**Stopped by --budget** (" << run.value("budget_minutes", 0.0) << " min) with "
+       << run.value("cases_postponed", 0)
+       << " cases postponed: this advice rests on the orientations finished. The same command "
+          "again goes on where it stopped (finished cases are kept).\n\n";
+  }
   md << "Errors are |model − reference| / reference over the orientations (median and worst); "
         "± the reference's uncertainty (worst over the orientations: its Richardson "
         "extrapolation's estimated error); CPU per impact is the median over the orientations "

@@ -41,6 +41,14 @@
 namespace asperity::study {
 namespace fs = std::filesystem;
 using OJson = nlohmann::ordered_json;
+using StopAt = std::optional<std::chrono::steady_clock::time_point>;
+
+namespace {
+// Whether the caller's deadline (StudyRunOptions::stop_at) has passed.
+bool past(const StopAt& stop_at) {
+  return stop_at && std::chrono::steady_clock::now() >= *stop_at;
+}
+}  // namespace
 
 namespace {
 
@@ -107,7 +115,7 @@ class Progress {
   void done(const cluster::TaskReport& r, double weight, int running) {
     ++count_;
     failed_ += r.failed ? 1 : 0;
-    (r.skipped ? total_weight_ -= weight : weight_ += weight);
+    (r.skipped || r.postponed ? total_weight_ -= weight : weight_ += weight);
     if (quiet_) return;
     const double el = elapsed();
     if (!tty_ && el - last_print_ < 10 && count_ < total_) return;
@@ -638,6 +646,7 @@ struct MeshTask {
 struct Meshes {
   std::vector<MeshTask> tasks;
   std::vector<std::string> errors;  // per task; empty: meshed (now or by an earlier run)
+  int postponed = 0;                // tasks not run: the deadline had passed
 };
 
 // One mesh: the source simplified to `faces` triangles and tetrahedralized, with the study's
@@ -749,7 +758,7 @@ cluster::TaskReport make_source_mesh(const StudyDef& def, const fs::path& out, c
 Meshes mesh_particles(const StudyDef& def, const fs::path& out,
                       const std::vector<std::size_t>& particles,
                       const std::vector<SurfaceMesh>& sources, int jobs, cluster::World& world,
-                      bool quiet, StudyOutcome& outcome) {
+                      bool quiet, const StopAt& stop_at, StudyOutcome& outcome) {
   Meshes m;
   // The sphere alone needs only the reference mesh (its volume).
   const bool polyhedra =
@@ -775,12 +784,17 @@ Meshes mesh_particles(const StudyDef& def, const fs::path& out,
       world, n, order, jobs,
       [&](int k) {
         const MeshTask& t = m.tasks[static_cast<std::size_t>(k)];
+        if (past(stop_at)) {
+          return cluster::TaskReport{.postponed = true,
+                                     .note = def.particles[t.particle].name + " (postponed)"};
+        }
         return t.source_patch > 0 ? make_source_mesh(def, out, t, sources[t.particle])
                                   : make_mesh(def, out, t, sources[t.particle]);
       },
       [&](const cluster::TaskReport& r, int running) { progress.done(r, 1, running); });
   for (const cluster::TaskReport& r : reports) {
     m.errors.push_back(r.failed ? r.payload : "");
+    m.postponed += r.postponed ? 1 : 0;
     outcome.cpu_seconds += r.cpu_seconds;
   }
   return m;
@@ -857,9 +871,10 @@ std::map<std::string, ParticlePlan> plan_particles(const StudyDef& def, const fs
 // One case: its scene.json, the run's outputs, and case.json last (the done marker); kept when
 // an earlier run finished the same scene; failed.json when it fails.
 cluster::TaskReport run_case(const StudyDef& def, const fs::path& out, const ParticlePlan& pp,
-                             const CaseKey& c) {
+                             const CaseKey& c, const StopAt& stop_at) {
   const fs::path dir = case_dir(out, c);
   const std::string label = c.particle + " " + c.dir_name();
+  if (past(stop_at)) return {.postponed = true, .note = label + " (postponed)"};
   try {
     fs::create_directories(dir);
     if (!pp.mesh_error.empty()) throw std::runtime_error("meshing failed at " + pp.mesh_error);
@@ -883,7 +898,7 @@ cluster::TaskReport run_case(const StudyDef& def, const fs::path& out, const Par
     io::write_atomically(dir / "scene.json", scene_text);
     const scene::SceneDef scene = scene::load_scene(dir / "scene.json");
     const double cpu0 = thread_and_children_cpu_seconds(), kept0 = run::kept_mesh_cpu_seconds();
-    run::RunResult result = run::run_scene(scene, run::RunOptions{});
+    run::RunResult result = run::run_scene(scene, run::RunOptions{.stop_at = stop_at});
     // The case's CPU on this worker thread with its TetGen children's, its meshing included even
     // where this process had made the mesh for an earlier case (the rigid and rigid-penalty cases
     // of one resolution share it): what the case costs alone, whichever ran first.
@@ -920,6 +935,9 @@ cluster::TaskReport run_case(const StudyDef& def, const fs::path& out, const Par
     char buf[64];
     std::snprintf(buf, sizeof buf, " %.2f s", cpu);
     return {.note = label + buf};
+  } catch (const run::RunStopped&) {
+    // Cut by the deadline: only its scene.json is written, so the next run runs it again.
+    return {.postponed = true, .note = label + " (stopped: postponed)"};
   } catch (const std::exception& e) {
     try {
       io::write_atomically(
@@ -936,7 +954,8 @@ cluster::TaskReport run_case(const StudyDef& def, const fs::path& out, const Par
 // Phase 4, cases: the most expensive first, over every rank's threads.
 void run_cases(const StudyDef& def, const fs::path& out,
                const std::map<std::string, ParticlePlan>& plans, const std::vector<CaseKey>& cases,
-               int jobs, cluster::World& world, bool quiet, StudyOutcome& outcome) {
+               int jobs, cluster::World& world, bool quiet, const StopAt& stop_at,
+               StudyOutcome& outcome) {
   std::vector<int> order(cases.size());
   for (std::size_t k = 0; k < cases.size(); ++k) order[k] = static_cast<int>(k);
   const auto weight = [&](int k) { return case_weight(cases[static_cast<std::size_t>(k)]); };
@@ -950,14 +969,15 @@ void run_cases(const StudyDef& def, const fs::path& out,
       world, outcome.cases, order, jobs,
       [&](int k) {
         const CaseKey& c = cases[static_cast<std::size_t>(k)];
-        return run_case(def, out, plans.at(c.particle), c);
+        return run_case(def, out, plans.at(c.particle), c, stop_at);
       },
       [&](const cluster::TaskReport& r, int running) { progress.done(r, weight(r.task), running); },
       &stats);
   for (const cluster::TaskReport& r : reports) {
     outcome.failed += r.failed ? 1 : 0;
     outcome.skipped += r.skipped ? 1 : 0;
-    outcome.ran += !r.failed && !r.skipped ? 1 : 0;
+    outcome.postponed += r.postponed ? 1 : 0;
+    outcome.ran += !r.failed && !r.skipped && !r.postponed ? 1 : 0;
     outcome.cpu_seconds += r.cpu_seconds;
   }
   outcome.workers = stats.workers;
@@ -984,8 +1004,8 @@ StudyOutcome run_study(const StudyDef& def, const fs::path& out, const StudyRunO
   });
   StudyOutcome outcome;
   outcome.ranks = world.size();
-  const Meshes meshes =
-      mesh_particles(def, out, particles, sources, jobs, world, options.quiet, outcome);
+  const Meshes meshes = mesh_particles(def, out, particles, sources, jobs, world, options.quiet,
+                                       options.stop_at, outcome);
   std::vector<CaseKey> cases;
   for (const auto& plan : {plan_cases(def), plan_source_cases(def)}) {
     for (const CaseKey& c : plan) {
@@ -994,8 +1014,14 @@ StudyOutcome run_study(const StudyDef& def, const fs::path& out, const StudyRunO
       }
     }
   }
-  const std::map<std::string, ParticlePlan> plans = plan_particles(def, out, meshes, cases);
-  run_cases(def, out, plans, cases, jobs, world, options.quiet, outcome);
+  if (meshes.postponed > 0) {
+    // The deadline passed while meshing: the cases cannot be planned without every mesh, so
+    // all of them wait for the next run.
+    outcome.cases = outcome.postponed = static_cast<int>(cases.size());
+  } else {
+    const std::map<std::string, ParticlePlan> plans = plan_particles(def, out, meshes, cases);
+    run_cases(def, out, plans, cases, jobs, world, options.quiet, options.stop_at, outcome);
+  }
   outcome.wall_seconds =
       std::chrono::duration<double>(std::chrono::steady_clock::now() - wall0).count();
   return outcome;

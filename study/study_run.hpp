@@ -15,8 +15,10 @@
 //   element size at the strike point over the equivalent radius)
 #pragma once
 
+#include <chrono>
 #include <filesystem>
 #include <memory>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -42,10 +44,15 @@ struct StudyRunOptions {
   bool quiet = false;  // no progress line
   Shard shard;
   cluster::World* world = nullptr;  // the ranks to run on; nullptr: joins the launch itself
+  // A wall-clock deadline (`advise --budget`, `study --stop-after`): no mesh or case starts after
+  // it, and a case running at it stops within 256 steps (run::RunOptions::stop_at). What it cut
+  // is postponed, not failed: nothing of it is written as done, so the next run does it.
+  std::optional<std::chrono::steady_clock::time_point> stop_at;
 };
 
 struct StudyOutcome {
   int cases = 0, ran = 0, skipped = 0, failed = 0;
+  int postponed = 0;  // meshes and cases left for the next run by StudyRunOptions::stop_at
   double wall_seconds = 0;
   double cpu_seconds = 0;  // summed thread CPU of the cases run now (meshing included)
   // The cases phase on rank 0 (cluster::PoolStats): ranks, workers over all ranks, the share of

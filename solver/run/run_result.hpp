@@ -2,7 +2,9 @@
 // summary.json object (run/summary.hpp writes its core), and the options a caller may set.
 #pragma once
 
+#include <chrono>
 #include <optional>
+#include <stdexcept>
 #include <string>
 #include <vector>
 
@@ -28,6 +30,16 @@ struct RunOptions {
   bool progress = false;  // progress line on stderr for long runs
   // ParaView frames (run/vtk_series.hpp); none unless set with every > 0.
   std::optional<VtkOutput> vtk;
+  // A wall-clock deadline (a caller's budget, `advise --budget`, `study --stop-after`): the time
+  // loop looks at the clock every 256 steps and, once past it, throws RunStopped. A run so
+  // stopped has no result: the budget, not the physics, ended it, so nothing may be written.
+  std::optional<std::chrono::steady_clock::time_point> stop_at;
+};
+
+// Thrown by the time loop at RunOptions::stop_at: the run was cut short by its caller's budget.
+class RunStopped : public std::runtime_error {
+ public:
+  using std::runtime_error::runtime_error;
 };
 
 struct RunResult {

@@ -14,9 +14,11 @@
 // around it (frames, status, the summary's core), so a runner adds only its model's keys.
 #pragma once
 
+#include <chrono>
 #include <cstdint>
 #include <functional>
 #include <optional>
+#include <string>
 
 #include "solver/core/body_contacts.hpp"
 #include "solver/core/clock.hpp"
@@ -96,6 +98,11 @@ LoopOutcome time_loop(Model& m, const scene::SceneDef& s, const RunOptions& opti
     if (observer) observer(k, sample_force().norm(), k == step.steps || out.ended_by_separation);
     monitor.progress(k);
     if (out.ended_by_separation) break;
+    if (options.stop_at && (k & 255) == 0 && std::chrono::steady_clock::now() >= *options.stop_at) {
+      monitor.finish();
+      throw RunStopped("stopped at step " + std::to_string(k) + " of " +
+                       std::to_string(step.steps) + ": the budget ran out");
+    }
   }
   monitor.finish();
   const std::uint64_t tick_count = ticks() - ticks0;
