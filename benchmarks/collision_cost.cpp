@@ -21,7 +21,6 @@
 // line naming the file and the problem, exit 2.
 #include <algorithm>
 #include <cmath>
-#include <cstdio>
 #include <filesystem>
 #include <map>
 #include <optional>
@@ -30,7 +29,6 @@
 
 #include "solver/core/least_squares.hpp"
 #include "solver/core/quantile.hpp"
-#include "solver/geometry/mesh_text.hpp"
 #include "solver/io/atomic_file.hpp"
 #include "solver/io/csv.hpp"
 
@@ -47,10 +45,6 @@ struct Run {
   double cpu = 0, steps = 0, dt = 0, dt_element = 0, tets = 0, penalty_scale_min = 1;
 };
 
-struct BadInput {
-  std::string what;
-};
-
 // The particles in the order they first ran, each with its runs by N.
 struct Runs {
   std::vector<std::string> order;
@@ -58,41 +52,25 @@ struct Runs {
 };
 
 Runs read_runs(const std::string& file) {
-  const std::optional<asperity::io::CsvTable> table = asperity::io::read_csv_table(file);
-  if (!table) throw BadInput{"cannot be read, or is empty"};
-  const auto column = [&](const char* name) {
-    const std::optional<std::size_t> i = table->column(name);
-    if (!i) throw BadInput{std::string("has no column \"") + name + "\""};
-    return *i;
-  };
-  const std::size_t particle = column("particle"), faces = column("faces"), cpu = column("cpu_s"),
-                    steps = column("steps"), dt = column("dt"), dt_element = column("dt_element"),
-                    tets = column("tets");
-  const std::optional<std::size_t> penalty = table->column("penalty_scale_min");
+  const asperity::io::CsvTable t = asperity::io::read_csv_table(file);
+  const std::size_t particle = t.required("particle"), faces = t.required("faces"),
+                    cpu = t.required("cpu_s"), steps = t.required("steps"), dt = t.required("dt"),
+                    dt_element = t.required("dt_element"), tets = t.required("tets");
+  const std::optional<std::size_t> penalty = t.column("penalty_scale_min");
   Runs runs;
-  for (std::size_t k = 0; k < table->rows.size(); ++k) {
-    const std::vector<std::string>& f = table->rows[k];
-    const auto number = [&](std::size_t i) {
-      const std::optional<double> v =
-          i < f.size() ? asperity::geometry::text::to_double(f[i]) : std::nullopt;
-      if (!v) {
-        throw BadInput{"line " + std::to_string(k + 2) + ", column \"" + table->header[i] +
-                       "\": not a number"};
-      }
-      return *v;
-    };
-    const std::string name = particle < f.size() ? f[particle] : "";
+  for (std::size_t k = 0; k < t.rows.size(); ++k) {
+    const std::string name = particle < t.rows[k].size() ? t.rows[k][particle] : "";
     if (!runs.by_particle.contains(name)) runs.order.push_back(name);
-    Run r{.cpu = number(cpu),
-          .steps = number(steps),
-          .dt = number(dt),
-          .dt_element = number(dt_element),
-          .tets = number(tets)};
+    Run r{.cpu = t.number(k, cpu),
+          .steps = t.number(k, steps),
+          .dt = t.number(k, dt),
+          .dt_element = t.number(k, dt_element),
+          .tets = t.number(k, tets)};
     // A run that did not report it (an older bench_fem) had no lowered penalty: factor 1.
-    if (penalty && !std::isnan(number(*penalty))) r.penalty_scale_min = number(*penalty);
-    runs.by_particle[name][std::lround(number(faces))] = r;
+    if (penalty && !std::isnan(t.number(k, *penalty))) r.penalty_scale_min = t.number(k, *penalty);
+    runs.by_particle[name][std::lround(t.number(k, faces))] = r;
   }
-  if (runs.order.empty()) throw BadInput{"has no runs"};
+  if (runs.order.empty()) throw asperity::InputError("has no runs");
   return runs;
 }
 
@@ -233,30 +211,24 @@ std::string summary(const Runs& runs, const std::vector<Exponents>& es) {
     if (it == levels.end() || !(it->second.cpu > kBudgetSeconds)) continue;
     over_names += (over++ ? ";" : "") + p;
   }
-  asperity::io::CsvWriter csv(
-      {"particles", "high_exponent", "budget_seconds", "exponent_particles", "exponent_median",
-       "exponent_min", "exponent_max", "exponent_max_particle", "exponent_above_high",
-       "fit_particles", "fit_median", "fit_min", "fit_max", "fit_max_particle", "fit_above_high",
-       "over_budget", "over_budget_particles"},
-      17);
-  csv.number(static_cast<double>(runs.order.size()))
-      .number(kHighExponent)
-      .number(kBudgetSeconds)
-      .number(static_cast<double>(e.particles))
-      .number(e.median)
-      .number(e.least)
-      .number(e.largest)
-      .field(e.largest_particle)
-      .number(static_cast<double>(e.above_high))
-      .number(static_cast<double>(f.particles))
-      .number(f.median)
-      .number(f.least)
-      .number(f.largest)
-      .field(f.largest_particle)
-      .number(static_cast<double>(f.above_high))
-      .number(static_cast<double>(over))
-      .field(over_names)
-      .end_row();
+  // The exponent 100 → 1000's columns, then the least-squares slope's ("fit_").
+  std::vector<std::string> header = {"particles", "high_exponent", "budget_seconds"};
+  for (const char* of : {"exponent_", "fit_"}) {
+    for (const char* what : {"particles", "median", "min", "max", "max_particle", "above_high"})
+      header.push_back(std::string(of) + what);
+  }
+  header.insert(header.end(), {"over_budget", "over_budget_particles"});
+  asperity::io::CsvWriter csv(header, 17);
+  csv.number(static_cast<double>(runs.order.size())).number(kHighExponent).number(kBudgetSeconds);
+  for (const Spread& s : {e, f}) {
+    csv.number(static_cast<double>(s.particles))
+        .number(s.median)
+        .number(s.least)
+        .number(s.largest)
+        .field(s.largest_particle)
+        .number(static_cast<double>(s.above_high));
+  }
+  csv.number(static_cast<double>(over)).field(over_names).end_row();
   return csv.str();
 }
 
@@ -278,11 +250,7 @@ std::string exponent_bins(const std::vector<Exponents>& es) {
 }  // namespace
 
 int main(int argc, char** argv) {
-  if (argc != 3) {
-    std::fprintf(stderr, "usage: collision_cost RUNS.csv OUT_DIR\n");
-    return 2;
-  }
-  try {
+  return asperity::io::table_program(argc, argv, 2, "collision_cost RUNS.csv OUT_DIR", [&] {
     const Runs runs = read_runs(argv[1]);
     const std::vector<Exponents> es = exponents(runs);
     const std::filesystem::path out = argv[2];
@@ -291,9 +259,5 @@ int main(int argc, char** argv) {
     asperity::io::write_atomically(out / "by_particle.csv", by_particle(es));
     asperity::io::write_atomically(out / "summary.csv", summary(runs, es));
     asperity::io::write_atomically(out / "exponent_bins.csv", exponent_bins(es));
-  } catch (const BadInput& e) {
-    std::fprintf(stderr, "%s: %s\n", argv[1], e.what.c_str());
-    return 2;
-  }
-  return 0;
+  });
 }

@@ -16,8 +16,6 @@
 // naming the file and the problem, exit 2.
 #include <algorithm>
 #include <cmath>
-#include <cstdio>
-#include <exception>
 #include <map>
 #include <string>
 #include <utility>
@@ -111,32 +109,25 @@ std::vector<Row> rows(const Json& runs, Agreement& agreement) {
 }  // namespace
 
 int main(int argc, char** argv) {
-  if (argc != 4) {
-    std::fprintf(stderr, "usage: peer_cost_table RUNS.json COST.csv AGREEMENT.csv\n");
-    return 2;
-  }
-  try {
-    Agreement agreement;
-    const Json runs = asperity::io::read_json_file(argv[1]);
-    const std::vector<Row> table = rows(runs, agreement);
-    std::vector<std::string> header = {"scene", "particles", "steps", "dt", "code", "repeats"};
-    header.insert(header.end(), std::begin(kKeys), std::end(kKeys));
-    header.insert(header.end(), {"over_asperity", "step_cpu_from", "version", "error"});
-    asperity::io::CsvWriter cost(header);
-    for (const Row& r : table) {
-      for (const std::string& h : header) {
-        const auto it = r.value.find(h);
-        cost.field(it == r.value.end() ? std::string() : cell(it->second));
-      }
-      cost.end_row();
-    }
-    asperity::io::write_atomically(argv[2], cost.str());
-    asperity::io::CsvWriter agree({"code", "largest_difference_seconds"});
-    for (const auto& [code, most] : agreement) agree.field(code).field(Json(most).dump()).end_row();
-    asperity::io::write_atomically(argv[3], agree.str());
-  } catch (const std::exception& e) {
-    std::fprintf(stderr, "%s: %s\n", argv[1], e.what());
-    return 2;
-  }
-  return 0;
+  return asperity::io::table_program(
+      argc, argv, 3, "peer_cost_table RUNS.json COST.csv AGREEMENT.csv", [&] {
+        Agreement agreement;
+        const std::vector<Row> table = rows(asperity::io::read_json_file(argv[1]), agreement);
+        std::vector<std::string> header = {"scene", "particles", "steps", "dt", "code", "repeats"};
+        header.insert(header.end(), std::begin(kKeys), std::end(kKeys));
+        header.insert(header.end(), {"over_asperity", "step_cpu_from", "version", "error"});
+        asperity::io::CsvWriter cost(header);
+        for (const Row& r : table) {
+          for (const std::string& h : header) {
+            const auto it = r.value.find(h);
+            cost.field(it == r.value.end() ? std::string() : cell(it->second));
+          }
+          cost.end_row();
+        }
+        asperity::io::write_atomically(argv[2], cost.str());
+        asperity::io::CsvWriter agree({"code", "largest_difference_seconds"});
+        for (const auto& [code, most] : agreement)
+          agree.field(code).field(Json(most).dump()).end_row();
+        asperity::io::write_atomically(argv[3], agree.str());
+      });
 }

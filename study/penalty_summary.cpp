@@ -13,16 +13,11 @@
 // exit 2.
 #include <algorithm>
 #include <cmath>
-#include <cstdio>
-#include <fstream>
 #include <map>
-#include <sstream>
-#include <stdexcept>
 #include <string>
 #include <vector>
 
 #include "solver/core/quantile.hpp"
-#include "solver/geometry/mesh_text.hpp"
 #include "solver/io/atomic_file.hpp"
 #include "solver/io/csv.hpp"
 
@@ -35,45 +30,25 @@ struct Row {
          impulse_vs_stiffest = 0;
 };
 
-struct BadInput {
-  std::string what;
-};
-
 // The rows of PENALTY.csv (plain fields: penalty_sensitivity.py writes no quoted ones).
 std::vector<Row> read_rows(const std::string& file) {
-  const std::optional<asperity::io::CsvTable> table = asperity::io::read_csv_table(file);
-  if (!table) throw BadInput{"cannot be read, or is empty"};
-  const std::vector<std::string>& header = table->header;
-  const auto column = [&](const char* name) {
-    const std::optional<std::size_t> i = table->column(name);
-    if (!i) throw BadInput{std::string("has no column \"") + name + "\""};
-    return *i;
-  };
-  const std::size_t model = column("model"), resolution = column("resolution"),
-                    alpha = column("alpha"), cpu = column("cpu_seconds"),
-                    finest = column("peak_vs_finest"), stiffest = column("peak_vs_stiffest"),
-                    impulse = column("impulse_vs_stiffest");
+  const asperity::io::CsvTable t = asperity::io::read_csv_table(file);
+  const std::size_t model = t.required("model"), resolution = t.required("resolution"),
+                    alpha = t.required("alpha"), cpu = t.required("cpu_seconds"),
+                    finest = t.required("peak_vs_finest"),
+                    stiffest = t.required("peak_vs_stiffest"),
+                    impulse = t.required("impulse_vs_stiffest");
   std::vector<Row> rows;
-  for (std::size_t k = 0; k < table->rows.size(); ++k) {
-    const std::vector<std::string>& f = table->rows[k];
-    const auto number = [&](std::size_t i) {
-      const std::optional<double> v =
-          i < f.size() ? asperity::geometry::text::to_double(f[i]) : std::nullopt;
-      if (!v) {
-        throw BadInput{"line " + std::to_string(k + 2) + ", column \"" + header[i] +
-                       "\": not a number"};
-      }
-      return *v;
-    };
-    rows.push_back({.model = model < f.size() ? f[model] : "",
-                    .resolution = std::lround(number(resolution)),
-                    .alpha = number(alpha),
-                    .cpu_seconds = number(cpu),
-                    .peak_vs_finest = number(finest),
-                    .peak_vs_stiffest = number(stiffest),
-                    .impulse_vs_stiffest = number(impulse)});
+  for (std::size_t k = 0; k < t.rows.size(); ++k) {
+    rows.push_back({.model = model < t.rows[k].size() ? t.rows[k][model] : "",
+                    .resolution = std::lround(t.number(k, resolution)),
+                    .alpha = t.number(k, alpha),
+                    .cpu_seconds = t.number(k, cpu),
+                    .peak_vs_finest = t.number(k, finest),
+                    .peak_vs_stiffest = t.number(k, stiffest),
+                    .impulse_vs_stiffest = t.number(k, impulse)});
   }
-  if (rows.empty()) throw BadInput{"has no cases"};
+  if (rows.empty()) throw asperity::InputError("has no cases");
   return rows;
 }
 
@@ -123,15 +98,7 @@ std::string summary(const std::vector<Row>& rows) {
 }  // namespace
 
 int main(int argc, char** argv) {
-  if (argc != 3) {
-    std::fprintf(stderr, "usage: penalty_summary PENALTY.csv SUMMARY.csv\n");
-    return 2;
-  }
-  try {
+  return asperity::io::table_program(argc, argv, 2, "penalty_summary PENALTY.csv SUMMARY.csv", [&] {
     asperity::io::write_atomically(argv[2], summary(read_rows(argv[1])));
-  } catch (const BadInput& e) {
-    std::fprintf(stderr, "%s: %s\n", argv[1], e.what.c_str());
-    return 2;
-  }
-  return 0;
+  });
 }
