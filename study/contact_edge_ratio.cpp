@@ -24,6 +24,7 @@
 // line when DIR is not a study folder of STUDY.json or has no particle with a converged fem answer
 // and a sphere-local case.
 #include <algorithm>
+#include <cctype>
 #include <cmath>
 #include <cstdio>
 #include <filesystem>
@@ -62,7 +63,8 @@ std::vector<long> meshed(const fs::path& dir, const std::string& p) {
   std::vector<long> out;
   for (const fs::directory_entry& e : fs::directory_iterator(dir / "meshes" / p)) {
     const std::string name = e.path().filename().string();
-    if (!name.empty() && std::all_of(name.begin(), name.end(), ::isdigit))
+    if (!name.empty() &&
+        std::all_of(name.begin(), name.end(), [](unsigned char c) { return std::isdigit(c); }))
       out.push_back(std::stol(name));
   }
   std::sort(out.begin(), out.end());
