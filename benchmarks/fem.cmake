@@ -17,3 +17,8 @@ if(TARGET asperity_geometry)
   target_compile_definitions(bench_fem PRIVATE ASPERITY_HAVE_GEOMETRY=1
                                                ASPERITY_SOURCE_DIR="${ASPERITY_SOURCE_DIR}")
 endif()
+# The statistics of those collisions over the set (medians, worst, exponents over N), computed by
+# the C++ median and least-squares line (solver/core/) for collision_cost_table.py, which only
+# reads them: build/bin/collision_cost RUNS.csv OUT_DIR.
+add_executable(collision_cost ${CMAKE_CURRENT_LIST_DIR}/collision_cost.cpp)
+target_link_libraries(collision_cost PRIVATE asperity_io asperity_warnings)

@@ -15,8 +15,9 @@ if(TARGET asperity_geometry)
            COMMAND bench_hertz --benchmark_filter=^HertzBlock/graded/aR:0.150/s:2.000/)
   set_tests_properties(bench_hertz_smoke PROPERTIES LABELS benchmark)
 endif()
-# The Richardson columns of that table (order, the finest level's own error, the limit), computed
-# by the C++ rule (solver/core/richardson.hpp) for hertz_convergence_table.py, which only reads
-# them: build/bin/hertz_rates < "coarse middle fine ratio" lines.
+# The Richardson columns of that table (order, the finest level's own error, the limit) and the
+# least-squares lines of its limits against a/R, computed by the C++ rules
+# (solver/core/richardson.hpp, least_squares.hpp) for hertz_convergence_table.py, which only reads
+# them: build/bin/hertz_rates < "coarse middle fine ratio" lines (--line: "x1 y1 x2 y2 ..." lines).
 add_executable(hertz_rates ${CMAKE_CURRENT_LIST_DIR}/hertz_rates.cpp)
 target_link_libraries(hertz_rates PRIVATE asperity_core asperity_warnings)

@@ -8,9 +8,9 @@
 #include <sstream>
 
 #include "solver/core/error.hpp"
+#include "solver/core/quantile.hpp"
 #include "solver/io/atomic_file.hpp"
 #include "solver/io/json_file.hpp"
-#include "study/curve_measures.hpp"
 #include "study/tables/tables.hpp"
 
 namespace asperity::study {

@@ -87,13 +87,4 @@ std::string classify(double onset_shift_rel, double duration_ratio, double skew_
   return out.empty() ? "overlapping" : out;
 }
 
-double quantile(std::vector<double> v, double p) {
-  if (v.empty()) return std::nan("");
-  std::sort(v.begin(), v.end());
-  const double h = p * static_cast<double>(v.size() - 1);
-  const std::size_t lo = static_cast<std::size_t>(std::floor(h));
-  const std::size_t hi = std::min(lo + 1, v.size() - 1);
-  return v[lo] + (h - static_cast<double>(lo)) * (v[hi] - v[lo]);
-}
-
 }  // namespace asperity::study

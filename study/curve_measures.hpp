@@ -1,6 +1,6 @@
 // The study's measures of a force–time curve against its reference: shape (moments), the lag
-// that aligns two curves, the class of a response (docs/study.md, "Classification") and
-// quantiles. Pure functions of the sampled curves; the tables (study/tables/) use them.
+// that aligns two curves and the class of a response (docs/study.md, "Classification"). Pure
+// functions of the sampled curves; the tables (study/tables/) use them.
 #pragma once
 
 #include <string>
@@ -38,8 +38,5 @@ struct ClassifyCriteria {
 // same instant lags by about 15 % of the duration).
 std::string classify(double onset_shift_rel, double duration_ratio, double skew_diff,
                      const ClassifyCriteria& c = {});
-
-// p-th quantile (0..1) with linear interpolation between order statistics (Hyndman & Fan type 7).
-double quantile(std::vector<double> v, double p);
 
 }  // namespace asperity::study

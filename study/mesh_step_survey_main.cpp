@@ -11,6 +11,7 @@
 #include <vector>
 
 #include "solver/core/error.hpp"
+#include "solver/core/quantile.hpp"
 #include "solver/io/atomic_file.hpp"
 #include "study/mesh_step_survey.hpp"
 #include "study/study_def.hpp"
@@ -26,16 +27,14 @@ std::string num(double v, const char* f = "%.3g") {
   return b;
 }
 
-// min, median, max of `v` (sorted copy; the median of an even count is the lower middle's and
-// upper middle's mean).
+// min, median (solver/core/quantile.hpp), max of `v`; zeros for none.
 struct Spread {
   double min = 0, median = 0, max = 0;
 };
-Spread spread(std::vector<double> v) {
+Spread spread(const std::vector<double>& v) {
   if (v.empty()) return {};
-  std::sort(v.begin(), v.end());
-  const std::size_t n = v.size();
-  return {v.front(), n % 2 ? v[n / 2] : 0.5 * (v[n / 2 - 1] + v[n / 2]), v.back()};
+  const auto [lo, hi] = std::minmax_element(v.begin(), v.end());
+  return {*lo, asperity::quantile(v, 0.5), *hi};
 }
 
 std::string spread_cells(const std::vector<double>& v) {

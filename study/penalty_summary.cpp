@@ -7,24 +7,19 @@
 // - peak_vs_finest_median: the median |peak − peak at the finest mesh| / that, coarser meshes only;
 // - peak_vs_stiffest_median, impulse_vs_stiffest_median: the median |change| from the stiffest α;
 // - cpu_seconds_finest_mean: the mean CPU seconds at the finest mesh.
-// Medians are the study's quantile (curve_measures.hpp, type 7) over the finite changes (a case
+// Medians are the one quantile (solver/core/quantile.hpp, type 7) over the finite changes (a case
 // without its finest or stiffest partner has none); numbers to the last bit (17 digits), so a
 // reader formats exactly these doubles. Bad input: one line naming the file and the problem,
 // exit 2.
 #include <algorithm>
 #include <cmath>
-#include <cstdio>
-#include <fstream>
 #include <map>
-#include <sstream>
-#include <stdexcept>
 #include <string>
 #include <vector>
 
-#include "solver/geometry/mesh_text.hpp"
+#include "solver/core/quantile.hpp"
 #include "solver/io/atomic_file.hpp"
 #include "solver/io/csv.hpp"
-#include "study/curve_measures.hpp"
 
 namespace {
 
@@ -35,57 +30,25 @@ struct Row {
          impulse_vs_stiffest = 0;
 };
 
-struct BadInput {
-  std::string what;
-};
-
-// The fields of one line (Python's csv module ends its lines with CR LF).
-std::vector<std::string> split(std::string line) {
-  if (!line.empty() && line.back() == '\r') line.pop_back();
-  std::vector<std::string> out;
-  std::stringstream s(line);
-  for (std::string f; std::getline(s, f, ',');) out.push_back(f);
-  if (!line.empty() && line.back() == ',') out.emplace_back();
-  return out;
-}
-
 // The rows of PENALTY.csv (plain fields: penalty_sensitivity.py writes no quoted ones).
 std::vector<Row> read_rows(const std::string& file) {
-  std::ifstream in(file);
-  if (!in) throw BadInput{"cannot be read"};
-  std::string line;
-  if (!std::getline(in, line)) throw BadInput{"is empty"};
-  const std::vector<std::string> header = split(line);
-  const auto column = [&](const char* name) {
-    const auto it = std::find(header.begin(), header.end(), name);
-    if (it == header.end()) throw BadInput{std::string("has no column \"") + name + "\""};
-    return static_cast<std::size_t>(it - header.begin());
-  };
-  const std::size_t model = column("model"), resolution = column("resolution"),
-                    alpha = column("alpha"), cpu = column("cpu_seconds"),
-                    finest = column("peak_vs_finest"), stiffest = column("peak_vs_stiffest"),
-                    impulse = column("impulse_vs_stiffest");
+  const asperity::io::CsvTable t = asperity::io::read_csv_table(file);
+  const std::size_t model = t.required("model"), resolution = t.required("resolution"),
+                    alpha = t.required("alpha"), cpu = t.required("cpu_seconds"),
+                    finest = t.required("peak_vs_finest"),
+                    stiffest = t.required("peak_vs_stiffest"),
+                    impulse = t.required("impulse_vs_stiffest");
   std::vector<Row> rows;
-  for (long n = 2; std::getline(in, line); ++n) {
-    const std::vector<std::string> f = split(line);
-    const auto number = [&](std::size_t i) {
-      const std::optional<double> v =
-          i < f.size() ? asperity::geometry::text::to_double(f[i]) : std::nullopt;
-      if (!v) {
-        throw BadInput{"line " + std::to_string(n) + ", column \"" + header[i] +
-                       "\": not a number"};
-      }
-      return *v;
-    };
-    rows.push_back({.model = model < f.size() ? f[model] : "",
-                    .resolution = std::lround(number(resolution)),
-                    .alpha = number(alpha),
-                    .cpu_seconds = number(cpu),
-                    .peak_vs_finest = number(finest),
-                    .peak_vs_stiffest = number(stiffest),
-                    .impulse_vs_stiffest = number(impulse)});
+  for (std::size_t k = 0; k < t.rows.size(); ++k) {
+    rows.push_back({.model = model < t.rows[k].size() ? t.rows[k][model] : "",
+                    .resolution = std::lround(t.number(k, resolution)),
+                    .alpha = t.number(k, alpha),
+                    .cpu_seconds = t.number(k, cpu),
+                    .peak_vs_finest = t.number(k, finest),
+                    .peak_vs_stiffest = t.number(k, stiffest),
+                    .impulse_vs_stiffest = t.number(k, impulse)});
   }
-  if (rows.empty()) throw BadInput{"has no cases"};
+  if (rows.empty()) throw asperity::InputError("has no cases");
   return rows;
 }
 
@@ -102,7 +65,7 @@ std::string summary(const std::vector<Row>& rows) {
     for (const Row* r : at) {
       if (keep(*r) && std::isfinite(change(*r))) v.push_back(std::abs(change(*r)));
     }
-    return asperity::study::quantile(v, 0.5);
+    return asperity::quantile(v, 0.5);
   };
   const auto all = [](const Row&) { return true; };
   asperity::io::CsvWriter csv(
@@ -135,15 +98,7 @@ std::string summary(const std::vector<Row>& rows) {
 }  // namespace
 
 int main(int argc, char** argv) {
-  if (argc != 3) {
-    std::fprintf(stderr, "usage: penalty_summary PENALTY.csv SUMMARY.csv\n");
-    return 2;
-  }
-  try {
+  return asperity::io::table_program(argc, argv, 2, "penalty_summary PENALTY.csv SUMMARY.csv", [&] {
     asperity::io::write_atomically(argv[2], summary(read_rows(argv[1])));
-  } catch (const BadInput& e) {
-    std::fprintf(stderr, "%s: %s\n", argv[1], e.what.c_str());
-    return 2;
-  }
-  return 0;
+  });
 }

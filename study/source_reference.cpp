@@ -121,14 +121,15 @@ SourceMetric metric(const std::vector<double>& sizes, const std::vector<SourceLe
   }
   if (value == &SourceLevel::peak_force)
     m.filter = run::kFilteredPeakBiasHertz - run::kFilteredPeakBiasHalfSine;
-  m.uncertainty = std::hypot(m.discretization, m.filter);
   if (!doubled.empty()) {
     // The doubled patch's levels at the patch's order and weight: the two differ level by level
     // by ±0.2–0.7 % with alternating sign (gen7321), so the doubled sequence's own order, often
     // another or an oscillation, would extrapolate that noise instead of the patch's effect.
     m.patch_change = tables::extrapolate_like(values(doubled), m.limit) / m.limit.limit - 1;
-    m.uncertainty = std::hypot(m.discretization, m.patch_change, m.filter);
   }
+  // The patch term counts 0 when the doubled patch did not run (tables::quadrature_sum).
+  m.uncertainty =
+      tables::quadrature_sum(tables::quadrature_sum(m.discretization, m.patch_change), m.filter);
   return m;
 }
 

@@ -80,8 +80,9 @@ SourceLevel source_level(double filtered_peak_force, double impulse, double cont
 
 // The reference of one metric: the Richardson limit of the levels on the patch (with its
 // estimated error, relative, and the order used, observed or assumed: tables::richardson), the
-// patch check's change, and the reference's uncertainty, the terms in quadrature (the patch term
-// left out when not run).
+// patch check's change, and the reference's uncertainty, the terms in quadrature
+// (tables::quadrature_sum: the patch term counts 0 when not run, as any term that is not finite);
+// the study's references.csv carries this uncertainty (tables::source_reference_of).
 //
 // patch_change (NaN when the doubled patch was not run): (L2 − L)/L, L the patch's limit and L2
 // the doubled patch's levels extrapolated with the PATCH's order and weight

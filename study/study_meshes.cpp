@@ -108,7 +108,7 @@ fdem::WorldDef particle_on_block(const TetMesh& tets, const StudyDef& def, fdem:
   return w;
 }
 
-LocalRadii local_radii(const std::filesystem::path& file) {
+SurfaceMesh read_surface(const std::filesystem::path& file) {
   const geometry::PolygonSoup soup = geometry::read_mesh_file(file);
   SurfaceMesh s;
   s.vertices = soup.points;
@@ -119,6 +119,11 @@ LocalRadii local_radii(const std::filesystem::path& file) {
           static_cast<int>(soup.polygons[f][static_cast<std::size_t>(k)]);
     }
   }
+  return s;
+}
+
+LocalRadii local_radii(const std::filesystem::path& file) {
+  const SurfaceMesh s = read_surface(file);
   const geometry::LocalCurvature c =
       geometry::lowest_point_curvature(s, 2.5 * geometry::mean_edge_length(s));
   return {c.radius_min, c.radius_max, c.equivalent_radius()};

@@ -35,6 +35,9 @@ geometry::PreparedParticle particle_mesh(const SurfaceMesh& source, const std::s
 fdem::WorldDef particle_on_block(const TetMesh& tets, const StudyDef& def, fdem::BodyKind kind,
                                  double radius);
 
+// The triangle surface in FILE (a study mesh's surface.off), as geometry::read_mesh_file reads it.
+SurfaceMesh read_surface(const std::filesystem::path& file);
+
 // The principal radii (m, r1 ≤ r2) of the surface in FILE (a study mesh's surface.off) at its
 // lowest vertex and Hertz's equivalent radius √(r1 r2) there (0: flat or concave), fitted over a
 // patch of 2.5 mean edges (about two rings of vertices: the fewest that hold the quadric's six

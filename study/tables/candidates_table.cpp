@@ -3,7 +3,7 @@
 #include <algorithm>
 #include <cmath>
 
-#include "study/curve_measures.hpp"
+#include "solver/core/quantile.hpp"
 #include "study/tables/tables.hpp"
 
 namespace asperity::study::tables {

@@ -1,7 +1,8 @@
 // cpu_fit.csv: the CPU cost against the resolution, t = C N^p (docs/study.md, "Tables").
 #include <cmath>
 
-#include "study/curve_measures.hpp"
+#include "solver/core/least_squares.hpp"
+#include "solver/core/quantile.hpp"
 #include "study/tables/tables.hpp"
 
 namespace asperity::study::tables {
@@ -25,18 +26,12 @@ std::vector<CpuFit> fit_cpu(const StudyCases& s) {
         ly.push_back(std::log(quantile(cpu, 0.5)));
       }
       if (lx.size() < 2) continue;
-      double mx = 0, my = 0;
-      const double np_ = static_cast<double>(lx.size());
-      for (std::size_t i = 0; i < lx.size(); ++i) mx += lx[i] / np_, my += ly[i] / np_;
-      double sxy = 0, sxx = 0;
-      for (std::size_t i = 0; i < lx.size(); ++i)
-        sxy += (lx[i] - mx) * (ly[i] - my), sxx += (lx[i] - mx) * (lx[i] - mx);
-      const double p = sxy / sxx;
+      const LineFit line = fit_line(lx, ly);
       fits.push_back({.model = m,
                       .placement = pl,
-                      .exponent = p,
-                      .coefficient = std::exp(my - p * mx),
-                      .points = static_cast<long>(lx.size())});
+                      .exponent = line.slope,
+                      .coefficient = std::exp(line.intercept),
+                      .points = line.points});
     }
   }
   return fits;

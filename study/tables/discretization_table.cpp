@@ -7,7 +7,7 @@
 #include <utility>
 #include <vector>
 
-#include "study/curve_measures.hpp"
+#include "solver/core/quantile.hpp"
 #include "study/tables/tables.hpp"
 
 namespace asperity::study::tables {

@@ -4,7 +4,7 @@
 #include <cmath>
 #include <set>
 
-#include "study/curve_measures.hpp"
+#include "solver/core/quantile.hpp"
 #include "study/tables/tables.hpp"
 
 namespace asperity::study::tables {

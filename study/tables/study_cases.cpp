@@ -84,13 +84,10 @@ void extrapolate(Sequence& q, const std::vector<const CaseData*>& seq) {
   q.extrapolated = true;
 }
 
-// Per metric √(a² + b²), a term that is not finite counting 0.
+// Per metric quadrature_sum (study_cases.hpp): √(a² + b²), a term that is not finite counting 0.
 FemErrors quadrature(const FemErrors& a, const FemErrors& b) {
-  const auto hyp = [](double x, double y) {
-    return std::hypot(std::isfinite(x) ? x : 0.0, std::isfinite(y) ? y : 0.0);
-  };
-  return {hyp(a.peak, b.peak), hyp(a.impulse, b.impulse), hyp(a.duration, b.duration),
-          hyp(a.arrival, b.arrival)};
+  return {quadrature_sum(a.peak, b.peak), quadrature_sum(a.impulse, b.impulse),
+          quadrature_sum(a.duration, b.duration), quadrature_sum(a.arrival, b.arrival)};
 }
 
 // The source reference of a particle and placement (StudyCases::Reference, "source"): every level
@@ -143,8 +140,10 @@ std::optional<StudyCases::Reference> source_reference_of(const StudyCases& s,
                       std::abs(finest.first_contact - before.first_contact) / r.values.duration};
   r.patch = {ref.peak_force.patch_change, ref.impulse.patch_change,
              ref.contact_duration.patch_change};
-  r.uncertainty = quadrature(quadrature(r.discretization, abs_of(r.patch)),
-                             FemErrors{ref.peak_force.filter, 0, 0, 0});
+  // The source metrics' own uncertainty (source_reference.hpp); the first contact's, its last
+  // change.
+  r.uncertainty = {ref.peak_force.uncertainty, ref.impulse.uncertainty,
+                   ref.contact_duration.uncertainty, quadrature_sum(r.discretization.arrival, 0)};
   return r;
 }
 

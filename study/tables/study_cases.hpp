@@ -101,6 +101,16 @@ Extrapolation richardson(const std::vector<double>& sizes, const std::vector<dou
 // whatever its own changes would say (the source reference's patch check, source_reference.hpp).
 double extrapolate_like(const std::vector<double>& values, const Extrapolation& like);
 
+// √(a² + b²): the one quadrature of a reference's uncertainty terms (the finest reference's
+// discretization and geometry, the source reference's discretization, patch check and filter,
+// source_reference.hpp). A term that is not finite counts 0, deliberately: a term that was not
+// measured (the patch check not run, no coarser refined resolution for the geometry term) adds
+// nothing, as the references' tables have always summed; a reference whose own limit is not
+// finite has no value for its uncertainty to qualify.
+inline double quadrature_sum(double a, double b) {
+  return std::hypot(std::isfinite(a) ? a : 0.0, std::isfinite(b) ? b : 0.0);
+}
+
 // The fem refinement sequence of one (particle, resolution, placement): its answer (the finest
 // usable level; the coarse case when the study refines none), whether the last refinement moved
 // the peak force by less than the study's tolerance, per metric the change between the two

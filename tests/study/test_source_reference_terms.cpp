@@ -114,6 +114,14 @@ TEST(SourceReferenceTerms, WithoutTheDoubledPatchTheUncertaintyIsTheExtrapolatio
   EXPECT_DOUBLE_EQ(r.impulse.uncertainty, r.impulse.limit.error);
 }
 
+TEST(SourceReferenceTerms, ATermNotMeasuredCountsZeroInTheQuadrature) {
+  // tables::quadrature_sum, the one sum of the references' terms: the patch check not run (NaN)
+  // adds nothing, and the sum is the nested two-term hypot the references' table always wrote.
+  EXPECT_EQ(tables::quadrature_sum(0.003, std::nan("")), 0.003);
+  EXPECT_EQ(tables::quadrature_sum(std::nan(""), -0.004), 0.004);
+  EXPECT_EQ(tables::quadrature_sum(0.003, 0.004), std::hypot(0.003, 0.004));
+}
+
 TEST(SourceReferenceTerms, ASlowlyConvergingReferenceCarriesItsDistanceToTheLimit) {
   // Levels L + c h^0.24, ballast_01's measured order in peak force (changes −217, −183 N):
   // below the 0.5 richardson trusts, so its limit is the assumed bracket's (orders 1.2–2.7),

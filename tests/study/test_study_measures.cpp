@@ -7,6 +7,8 @@
 
 #include <gtest/gtest.h>
 
+#include "solver/core/least_squares.hpp"
+#include "solver/core/quantile.hpp"
 #include "study/curve_measures.hpp"
 #include "study/study_run.hpp"
 
@@ -88,6 +90,24 @@ TEST(Quantile, Type7) {
   EXPECT_DOUBLE_EQ(quantile({3, 1, 2}, 0.5), 2.0);
   EXPECT_DOUBLE_EQ(quantile({1, 2, 3, 4}, 0.5), 2.5);
   EXPECT_DOUBLE_EQ(quantile({0, 10}, 0.9), 9.0);
+}
+
+TEST(LeastSquares, LineAndErrors) {
+  // Exactly on y = 1 + 2x: no residual, no error.
+  const LineFit exact = fit_line({0, 1, 2}, {1, 3, 5});
+  EXPECT_DOUBLE_EQ(exact.intercept, 1.0);
+  EXPECT_DOUBLE_EQ(exact.slope, 2.0);
+  EXPECT_DOUBLE_EQ(exact.slope_error, 0.0);
+  EXPECT_EQ(exact.points, 3);
+  // (0, 0), (1, 1), (2, 0), (3, 1): slope 0.2, intercept 0.2, residuals −0.2, 0.6, −0.6, 0.2:
+  // s² = 0.8/2, Sxx = 5.
+  const LineFit noisy = fit_line({0, 1, 2, 3}, {0, 1, 0, 1});
+  EXPECT_NEAR(noisy.slope, 0.2, 1e-15);
+  EXPECT_NEAR(noisy.intercept, 0.2, 1e-15);
+  EXPECT_NEAR(noisy.slope_error, std::sqrt(0.4 / 5), 1e-15);
+  EXPECT_NEAR(noisy.intercept_error, std::sqrt(0.4 * (0.25 + 2.25 / 5)), 1e-15);
+  // Two points: the line through them, no error estimate.
+  EXPECT_TRUE(std::isnan(fit_line({1, 2}, {1, 2}).slope_error));
 }
 
 TEST(HertzContactTime, GlassSphere) {

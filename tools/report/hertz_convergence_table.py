@@ -10,7 +10,8 @@ one's):
   (Richardson) and the extrapolated limit's distance from Hertz, as build/bin/hertz_rates computes
   them (solver/core/richardson.hpp; --rates-program);
 - the limits against a/R: a least-squares line dev = c0 + c1 a/R, with the standard errors of
-  c0 (the test of "converges to Hertz" as a/R -> 0) and c1 (the finite-sphere coefficient).
+  c0 (the test of "converges to Hertz" as a/R -> 0) and c1 (the finite-sphere coefficient), as
+  hertz_rates --line computes them (solver/core/least_squares.hpp).
 
 Prints Markdown. Usage: hertz_convergence_table.py [--csv OUT.csv] RUN.json [RUN.json ...]"""
 import argparse
@@ -23,37 +24,38 @@ import subprocess
 import sys
 
 
-# The C++ that owns the Richardson rule (solver/core/richardson.hpp, benchmarks/hertz_rates.cpp):
-# this script groups the levels into sequences and reads the order, the finest level's own error
-# and the limit it writes; it computes none of them.
+# The C++ that owns the Richardson rule and the least-squares line (solver/core/richardson.hpp,
+# least_squares.hpp, benchmarks/hertz_rates.cpp): this script groups the levels into sequences
+# and reads the order, the finest level's own error, the limit and the limits' lines it writes;
+# it computes none of them.
 RATES = os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "..", "build", "bin",
                      "hertz_rates")
+
+
+def ask_rates(program, rows, *flags):
+    """Each row of numbers a line to hertz_rates (repr: to the last bit), each answer line a tuple
+    of floats."""
+    if not rows:
+        return []
+    if not os.access(program, os.X_OK):
+        sys.exit(f"{program}: not built (cmake --build build --target hertz_rates); it computes "
+                 "the Richardson columns and the limits' lines")
+    text = "".join(" ".join(repr(x) for x in row) + "\n" for row in rows)
+    out = subprocess.run([program, *flags], input=text, capture_output=True, text=True,
+                         check=True).stdout
+    return [tuple(float(x) for x in line.split()) for line in out.splitlines()]
 
 
 def richardson_rates(sequences, program, r=math.sqrt(2)):
     """(order, finest level's own error, limit) of each (coarse, middle, fine) in `sequences`,
     refined by r each, as hertz_rates computes them (to the last bit)."""
-    if not sequences:
-        return []
-    if not os.access(program, os.X_OK):
-        sys.exit(f"{program}: not built (cmake --build build --target hertz_rates); it computes "
-                 "the Richardson columns")
-    text = "".join(f"{e1!r} {e2!r} {e3!r} {r!r}\n" for e1, e2, e3 in sequences)
-    out = subprocess.run([program], input=text, capture_output=True, text=True, check=True).stdout
-    return [tuple(float(x) for x in line.split()) for line in out.splitlines()]
+    return ask_rates(program, [(e1, e2, e3, r) for e1, e2, e3 in sequences])
 
 
-def fit(xs, ys):
-    """Least-squares line y = c0 + c1 x: (c0, c1, se0, se1); se from the residuals (n > 2)."""
-    n = len(xs)
-    mx, my = sum(xs) / n, sum(ys) / n
-    sxx = sum((x - mx) ** 2 for x in xs)
-    c1 = sum((x - mx) * (y - my) for x, y in zip(xs, ys)) / sxx
-    c0 = my - c1 * mx
-    if n <= 2:
-        return c0, c1, float("nan"), float("nan")
-    s2 = sum((y - c0 - c1 * x) ** 2 for x, y in zip(xs, ys)) / (n - 2)
-    return c0, c1, math.sqrt(s2 * (1 / n + mx * mx / sxx)), math.sqrt(s2 / sxx)
+def limit_lines(points, program):
+    """(intercept, slope, intercept's standard error, slope's) of the least-squares line through
+    each list of (x, y) in `points`, as hertz_rates --line computes them (to the last bit)."""
+    return ask_rates(program, [[v for xy in pts for v in xy] for pts in points], "--line")
 
 
 def finite(ref, ar):
@@ -192,12 +194,14 @@ def main():
               f"{100 * rp[1]:+.2f} %, {100 * rd[1]:+.2f} % | "
               f"{100 * rp[2]:+.2f} %, {100 * rd[2]:+.2f} % | {filtered} | {finite(ref, ar)} |")
     print()
-    for (setup, grading), pts in sorted(limits.items()):
-        if len(pts) < 2:
-            continue
+    fitted = [(setup, grading, pts) for (setup, grading), pts in sorted(limits.items())
+              if len(pts) >= 2]
+    lines = iter(limit_lines([[(p[0], p[i]) for p in pts] for _, _, pts in fitted for i in (1, 2)],
+                             args.rates_program))
+    for setup, grading, pts in fitted:
         xs = [p[0] for p in pts]
-        for i, what in ((1, "peak"), (2, "duration")):
-            c0, c1, se0, se1 = fit(xs, [p[i] for p in pts])
+        for what in ("peak", "duration"):
+            c0, c1, se0, se1 = next(lines)
             print(f"- {setup} ({grading}), {what}: limit − Hertz = ({100 * c0:+.2f} ± "
                   f"{100 * se0:.2f}) % + ({c1:+.3f} ± {se1:.3f}) × a/R over a/R = "
                   f"{', '.join(f'{x:.3f}' for x in xs)}")

@@ -21,22 +21,25 @@ writes OUT_DIR/cost.csv and OUT_DIR/cost.md: per scene and code the median over 
 Every code runs single-threaded, without a per-step recorder or dump. A peer that fails or cannot
 express a scene is listed with its error, not left out. Exit 1 if any did. --tables-only rewrites
 the tables from the cost.json files an earlier run left in OUT_DIR/runs/.
+
+The medians, the ratios to asperity and the clocks' agreement are computed by
+build/bin/peer_cost_table (peers/peer_cost_table.cpp: the C++ median); this script runs the
+repeats, hands it their cost.json files and only formats the OUT_DIR/cost.csv it writes.
 """
-import csv
 import json
 import os
 import pathlib
 import platform
-import statistics
 import subprocess
 import sys
+import tempfile
 
 ROOT = pathlib.Path(__file__).resolve().parents[2]
 sys.path.insert(0, str(ROOT / "tools" / "cases"))
 import bed_scene  # noqa: E402
+from tabular import num, read_csv  # noqa: E402  (beside this file)
 
-KEYS = ["step_cpu_seconds", "cpu_per_step_per_particle", "process_step_cpu_seconds", "loop_cpu_seconds",
-        "loop_wall_seconds", "run_cpu_seconds", "run_wall_seconds"]
+TABLE = ROOT / "build" / "bin" / "peer_cost_table"
 
 
 def option(rest, name, default, kind=str):
@@ -58,6 +61,7 @@ def main(argv):
     peers = option(rest, "--peers", "yade,lammps,liggghts").split(",")
     bed_steps = option(rest, "--bed-steps", 500, int)
     pair_steps = option(rest, "--pair-steps", 1_000_000, int)
+    program = option(rest, "--table-program", str(TABLE))
     tables_only = "--tables-only" in rest
     if tables_only:
         rest.remove("--tables-only")
@@ -65,7 +69,11 @@ def main(argv):
         print(f"peer_cost.py: unknown arguments {rest}", file=sys.stderr)
         return 2
     scenes = bed_scene.write(out / "runs" / "scenes", bed_steps=bed_steps, pair_steps=pair_steps)
-    runs = {s.stem: [] for s in scenes}   # scene -> [cost.json per repeat]
+    if not os.access(program, os.X_OK):
+        print(f"{program}: not built (cmake --build build --target peer_cost_table); it computes "
+              "the table", file=sys.stderr)
+        return 2
+    files = {s.stem: [] for s in scenes}  # scene -> [cost.json per repeat]
     errors = {s.stem: {} for s in scenes}  # scene -> {peer: error}
     contacts = {}
     for r in range(repeats):
@@ -82,7 +90,7 @@ def main(argv):
                 print(f"{s.stem} r{r + 1}: FAILED {p.stderr.strip()}", file=sys.stderr)
                 continue
             c = json.loads(cost_file.read_text())
-            runs[s.stem].append(c)
+            files[s.stem].append(str(cost_file))
             errors[s.stem].update(c.get("failed", {}))
             errors[s.stem].update(c.get("not_run", {}))
             a = json.loads((d / "asperity" / "summary.json").read_text())
@@ -90,48 +98,24 @@ def main(argv):
             print(f"{s.stem} r{r + 1}: " + ", ".join(f"{k} {v['step_cpu_seconds']:.3f} s"
                                                      for k, v in c["codes"].items()), file=sys.stderr)
 
-    rows = []
-    for s in scenes:
-        rs = runs[s.stem]
-        if not rs:
-            continue
-        for code in ["asperity"] + peers:
-            got = [c["codes"][code] for c in rs if code in c["codes"]]
-            row = {"scene": s.stem, "particles": rs[0]["particles"], "steps": rs[0]["steps"], "dt": rs[0]["dt"],
-                   "code": code, "repeats": len(got), "error": errors[s.stem].get(code, "")}
-            if got:
-                for k in KEYS:
-                    vals = [g[k] for g in got if k in g]
-                    row[k] = statistics.median(vals) if vals else None
-                row["version"] = got[0]["version"]
-                row["step_cpu_from"] = got[0]["step_cpu_from"]
-            rows.append(row)
-        base = next((r for r in rows if r["scene"] == s.stem and r["code"] == "asperity" and "step_cpu_seconds" in r),
-                    None)
-        for r in rows:
-            if r["scene"] == s.stem and base and "step_cpu_seconds" in r:
-                r["over_asperity"] = r["step_cpu_seconds"] / base["step_cpu_seconds"]
-
     out.mkdir(parents=True, exist_ok=True)
-    fields = ["scene", "particles", "steps", "dt", "code", "repeats"] + KEYS + ["over_asperity", "step_cpu_from", "version", "error"]
-    with open(out / "cost.csv", "w", newline="") as fh:
-        w = csv.DictWriter(fh, fieldnames=fields, extrasaction="ignore")
-        w.writeheader()
-        w.writerows(rows)
+    with tempfile.TemporaryDirectory() as d:
+        given = pathlib.Path(d) / "runs.json"
+        given.write_text(json.dumps({"codes": ["asperity"] + peers, "scenes": [
+            {"scene": s.stem, "costs": files[s.stem], "errors": errors[s.stem]} for s in scenes]}))
+        agreement_csv = pathlib.Path(d) / "agreement.csv"
+        subprocess.run([program, str(given), str(out / "cost.csv"), str(agreement_csv)], check=True)
+        gaps = read_csv(agreement_csv)
+    rows = read_csv(out / "cost.csv")
 
-    def f(x, spec):
-        return "" if x is None or x == "" else format(x, spec)
+    def f(x, spec, scale=1):
+        return "" if x is None or x == "" else format(num(x) * scale, spec)
 
     # How far the two measures of a peer's steps agree where the peer has its own CPU clock: the
     # noise the 0-step difference carries (two process start-ups) for LIGGGHTS.
-    gaps = {}
-    for r in rows:
-        if r["code"] != "asperity" and r.get("process_step_cpu_seconds") is not None and \
-                r.get("step_cpu_from", "").startswith("the peer's"):
-            gap = abs(r["process_step_cpu_seconds"] - r["step_cpu_seconds"])
-            gaps[r["code"]] = max(gaps.get(r["code"], 0), gap)
     agreement = ("; where a peer has its own CPU clock the two agree within " +
-                 ", ".join(f"{g:.3f} s ({c})" for c, g in gaps.items())) if gaps else ""
+                 ", ".join(f"{num(g['largest_difference_seconds']):.3f} s ({g['code']})"
+                           for g in gaps)) if gaps else ""
 
     lines = [
         "# Cost per step: asperity, YADE, LAMMPS and LIGGGHTS on the same scenes",
@@ -160,11 +144,11 @@ def main(argv):
         "|---|---|---|---|---|---|---|---|---|",
     ]
     for r in rows:
-        if "step_cpu_seconds" not in r:
+        if r["repeats"] == "0":
             lines.append(f"| {r['scene']} | {r['code']} | not run: {r['error']} | | | | | | |")
             continue
         lines.append(f"| {r['scene']} | {r['code']} | {f(r['step_cpu_seconds'], '.4f')} | "
-                     f"{f(r['cpu_per_step_per_particle'] * 1e9, '.1f')} ns | {f(r.get('over_asperity'), '.2f')} | "
+                     f"{f(r['cpu_per_step_per_particle'], '.1f', 1e9)} ns | {f(r['over_asperity'], '.2f')} | "
                      f"{f(r['process_step_cpu_seconds'], '.4f')} | {f(r['run_cpu_seconds'], '.3f')} | "
                      f"{f(r['run_wall_seconds'], '.2f')} | {r['version']} |")
     (out / "cost.md").write_text("\n".join(lines) + "\n")
