@@ -39,7 +39,6 @@ sys.path.insert(0, str(ROOT / "tools" / "cases"))
 import bed_scene  # noqa: E402
 from tabular import num, read_csv  # noqa: E402  (beside this file)
 
-TABLE = ROOT / "build" / "bin" / "peer_cost_table"
 
 
 def option(rest, name, default, kind=str):
@@ -61,7 +60,8 @@ def main(argv):
     peers = option(rest, "--peers", "yade,lammps,liggghts").split(",")
     bed_steps = option(rest, "--bed-steps", 500, int)
     pair_steps = option(rest, "--pair-steps", 1_000_000, int)
-    program = option(rest, "--table-program", str(TABLE))
+    # The table program is built beside the asperity given (build/bin/ of the same build).
+    program = option(rest, "--table-program", str(pathlib.Path(exe).parent / "peer_cost_table"))
     tables_only = "--tables-only" in rest
     if tables_only:
         rest.remove("--tables-only")
