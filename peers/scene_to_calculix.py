@@ -360,7 +360,8 @@ def with_contact_ends(rows):
     penetration is inserted there."""
     out = []
     for k, row in enumerate(rows):
-        if k >= 2 and rows[k - 2][2] < rows[k - 1][2] < 0 < row[2]:
+        # Approaching in free flight (no force yet) at k - 2 and k - 1, in contact at k.
+        if k >= 2 and rows[k - 2][2] < rows[k - 1][2] < 0 < row[2] and rows[k - 1][1] <= 0:
             (t0, _, s0, _, _), (t1, _, s1, z1, v1) = rows[k - 2], rows[k - 1]
             t2, z2, v2 = row[0], row[3], row[4]
             ts = min(t2, t1 - s1 * (t1 - t0) / (s1 - s0))
