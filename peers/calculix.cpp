@@ -10,7 +10,8 @@
 //               T_H/15 000, would cost 150× the increments an implicit scheme needs: against
 //               T_H/200, T_H/100 moves the filtered peak by 0.09 and the duration by 0.04 point,
 //               measured at a/R = 0.15, s = 1)
-//   end         asperity's end time, or 1.2 T_H after the first touch when that is sooner (the
+//   end         asperity's end time (the scene's duration under `validate --solver`, which runs
+//               no asperity: own_step), or 1.2 T_H after the first touch when that is sooner (the
 //               finite sphere's contact is shorter than Hertz's: docs/physics.md, point 6)
 //   surface     a sphere's: the exact sphere through the file's vertices (gmsh's OpenCASCADE
 //               sphere), not the file's facets: a smooth surface is what both codes converge to.
@@ -350,7 +351,8 @@ Adapter calculix_adapter() {
           .package = "calculix-ccx",
           .cpu_note = "ccx's process (meshing by gmsh apart), the same run that is traced",
           .check = check,
-          .run = run};
+          .run = run,
+          .own_step = true};
 }
 
 }  // namespace asperity::peers

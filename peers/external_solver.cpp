@@ -104,6 +104,10 @@ run::RunResult solve_case(const CaseSolver& solver, const validation::CaseDef& c
     return run_command_solver(solver.command, c, dir);
   }
   const Adapter& a = find_adapter(solver.peer);
+  if (a.own_step) {
+    return run_peer(a, peer_executable(a, solver.program), c.scene,
+                    {.dt = c.scene.duration, .steps = 1}, dir);
+  }
   // The peer runs at the step and step count asperity resolves for the scene (docs/crosscheck.md):
   // asperity's run here only resolves them; its results are not gated.
   const run::RunResult own = run::run_scene(c.scene, {.keep_rows = false});
