@@ -711,8 +711,8 @@ cluster::TaskReport make_source_mesh(const StudyDef& def, const fs::path& out, c
       << " source-reference patch=" << t.source_patch * options.patch
       << " far_faces=" << options.far_faces << " levels=" << options.levels
       << " elements_across=" << options.elements_across << " coarsest_within=min(contact_edge,a/"
-      << kCoarsestAcross << ") speed=" << def.speed
-      << " material=" << material_json(def.material).dump();
+      << kCoarsestAcross << ") thin_face=" << geometry::kContactLocalThinFace
+      << " speed=" << def.speed << " material=" << material_json(def.material).dump();
   const std::string label = p.name + (t.source_patch == 1 ? " source" : " source-patch2");
   const fs::path dir = source_mesh_dir(out, p.name, t.source_patch);
   const double cpu0 = thread_and_children_cpu_seconds();

@@ -2,6 +2,7 @@
 // rest simplified by constrained edge collapse; the choice of policies is in the header.
 #include "solver/geometry/contact_local_surface.hpp"
 
+#include <algorithm>
 #include <stdexcept>
 #include <string>
 
@@ -15,6 +16,41 @@
 #include "solver/geometry/cgal_surface_mesh.hpp"
 
 namespace asperity::geometry {
+namespace {
+
+// The thin-face filter of contact_local_surface (the header): refuses a placement that leaves a
+// face of the collapse's star thinner than kContactLocalThinFace and thinner than it was. The
+// two faces on the collapsed edge vanish and are not checked (as Bounded_normal_change_filter).
+struct ThinFaceFilter {
+  template <typename Profile>
+  boost::optional<typename Profile::Point> operator()(
+      const Profile& profile, boost::optional<typename Profile::Point> op) const {
+    if (!op) return op;
+    const auto& vpm = profile.vertex_point_map();
+    const auto vec = [](const auto& p) {
+      return Vec3(CGAL::to_double(p.x()), CGAL::to_double(p.y()), CGAL::to_double(p.z()));
+    };
+    const auto& triangles = profile.triangles();
+    auto it = triangles.begin();
+    if (profile.left_face_exists()) ++it;
+    if (profile.right_face_exists()) ++it;
+    for (; it != triangles.end(); ++it) {
+      // v1 is the vertex the collapse places (CGAL's Edge_profile::triangles()).
+      const Vec3 p = vec(get(vpm, it->v0)), q = vec(get(vpm, it->v1)), r = vec(get(vpm, it->v2));
+      const double after = face_thickness(p, vec(*op), r);
+      if (after < kContactLocalThinFace && after < face_thickness(p, q, r)) return boost::none;
+    }
+    return op;
+  }
+};
+
+}  // namespace
+
+double face_thickness(const Vec3& a, const Vec3& b, const Vec3& c) {
+  const double longest2 =
+      std::max({(b - a).squaredNorm(), (c - b).squaredNorm(), (a - c).squaredNorm()});
+  return longest2 > 0 ? (b - a).cross(c - a).norm() / longest2 : 0.0;
+}
 
 ContactLocalSurface contact_local_surface(const SurfaceMesh& source, const ContactPatch& patch) {
   namespace SMS = CGAL::Surface_mesh_simplification;
@@ -47,7 +83,7 @@ ContactLocalSurface contact_local_surface(const SurfaceMesh& source, const Conta
                      inside(static_cast<int>(cm.target(h).idx()));
   }
   const SMS::Count_stop_predicate<cgal::Mesh> stop(static_cast<std::size_t>(3 * target / 2 + 1));
-  const SMS::Bounded_normal_change_filter<> filter;
+  const SMS::Bounded_normal_change_filter<ThinFaceFilter> filter;
   SMS::edge_collapse(cm, stop,
                      CGAL::parameters::get_cost(SMS::LindstromTurk_cost<cgal::Mesh>())
                          .get_placement(SMS::LindstromTurk_placement<cgal::Mesh>())

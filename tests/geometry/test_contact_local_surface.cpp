@@ -2,7 +2,9 @@
 // bit, the rest is simplified to the asked density, and the solid stays closed with its volume.
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <array>
+#include <cmath>
 #include <set>
 
 #include "solver/geometry/contact_local_surface.hpp"
@@ -74,6 +76,26 @@ TEST(ContactLocalSurface, KeepsThePatchBitForBitAndSimplifiesTheRest) {
   // terms of some 2000 collapses on a rough surface.
   const double v0 = mass_properties(source).volume, v1 = mass_properties(local.surface).volume;
   EXPECT_NEAR(v1 / v0, 1.0, 1e-6);
+  // No collapse leaves a face thinner than kContactLocalThinFace unless the face it replaced was
+  // already as thin, so by induction no face is thinner than the least of that bound and the
+  // source's thinnest (the folds at the patch's edge that set rock_04's step had 0.0065).
+  const auto thinnest = [](const SurfaceMesh& s) {
+    double t = 1;
+    for (Eigen::Index f = 0; f < s.faces.cols(); ++f) {
+      t = std::min(t, face_thickness(s.vertices.col(s.faces(0, f)), s.vertices.col(s.faces(1, f)),
+                                     s.vertices.col(s.faces(2, f))));
+    }
+    return t;
+  };
+  EXPECT_GE(thinnest(local.surface), std::min(kContactLocalThinFace, thinnest(source)));
+}
+
+// face_thickness: the height over the longest edge (√3/2 equilateral, 0.1 for a 10:1 needle).
+TEST(ContactLocalSurface, FaceThicknessIsTheHeightOverTheLongestEdge) {
+  EXPECT_NEAR(face_thickness(Vec3(0, 0, 0), Vec3(1, 0, 0), Vec3(0.5, std::sqrt(3.0) / 2, 0)),
+              std::sqrt(3.0) / 2, 1e-15);
+  EXPECT_NEAR(face_thickness(Vec3(0, 0, 0), Vec3(1, 0, 0), Vec3(0.3, 0.1, 0)), 0.1, 1e-15);
+  EXPECT_EQ(face_thickness(Vec3(0, 0, 0), Vec3(1, 0, 0), Vec3(2, 0, 0)), 0.0);
 }
 
 // A patch that holds the whole particle, or a far density above the source's, changes nothing.
