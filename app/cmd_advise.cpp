@@ -73,12 +73,7 @@ int advise_particle(const AdviseArgs& args) {
   // The budget is also a deadline inside an orientation: the first one, or a sharp corner whose
   // reference costs more than the slowest so far, stops at it (its finished levels are kept and
   // the next run resumes them) instead of running on unbounded.
-  std::optional<std::chrono::steady_clock::time_point> stop_at;
-  if (args.budget > 0) {
-    stop_at = std::chrono::steady_clock::now() +
-              std::chrono::duration_cast<std::chrono::steady_clock::duration>(
-                  std::chrono::duration<double>(60 * args.budget));
-  }
+  const auto stop_at = study::deadline_after(args.budget);
   study::StudyOutcome total;
   int done = 0;
   double slowest = 0;

@@ -68,12 +68,7 @@ int run(const StudyArgs& args) {
     return collect(def, args);
   }
   if (args.stop_after < 0) throw InputError("--stop-after: must be > 0 minutes");
-  std::optional<std::chrono::steady_clock::time_point> stop_at;
-  if (args.stop_after > 0) {
-    stop_at = std::chrono::steady_clock::now() +
-              std::chrono::duration_cast<std::chrono::steady_clock::duration>(
-                  std::chrono::duration<double>(60 * args.stop_after));
-  }
+  const auto stop_at = study::deadline_after(args.stop_after);
   cluster::World world;
   return world.guard([&] {
     const study::StudyOutcome o = study::run_study(def, args.out,

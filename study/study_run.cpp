@@ -44,13 +44,11 @@ using OJson = nlohmann::ordered_json;
 using StopAt = std::optional<std::chrono::steady_clock::time_point>;
 
 namespace {
+
 // Whether the caller's deadline (StudyRunOptions::stop_at) has passed.
 bool past(const StopAt& stop_at) {
   return stop_at && std::chrono::steady_clock::now() >= *stop_at;
 }
-}  // namespace
-
-namespace {
 
 std::string read_text(const fs::path& file) {
   std::ifstream in(file, std::ios::binary);
@@ -986,6 +984,13 @@ void run_cases(const StudyDef& def, const fs::path& out,
 }
 
 }  // namespace
+
+StopAt deadline_after(double minutes) {
+  if (!(minutes > 0)) return std::nullopt;
+  return std::chrono::steady_clock::now() +
+         std::chrono::duration_cast<std::chrono::steady_clock::duration>(
+             std::chrono::duration<double>(60 * minutes));
+}
 
 StudyOutcome run_study(const StudyDef& def, const fs::path& out, const StudyRunOptions& options) {
   const auto wall0 = std::chrono::steady_clock::now();

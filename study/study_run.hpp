@@ -50,6 +50,10 @@ struct StudyRunOptions {
   std::optional<std::chrono::steady_clock::time_point> stop_at;
 };
 
+// StudyRunOptions::stop_at `minutes` of wall from now (`advise --budget`, `study --stop-after`);
+// none for minutes ≤ 0.
+std::optional<std::chrono::steady_clock::time_point> deadline_after(double minutes);
+
 struct StudyOutcome {
   int cases = 0, ran = 0, skipped = 0, failed = 0;
   int postponed = 0;  // meshes and cases left for the next run by StudyRunOptions::stop_at
