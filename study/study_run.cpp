@@ -20,6 +20,7 @@
 #include <thread>
 
 #include "cluster/task_pool.hpp"
+#include "solver/contact/hertz_impact.hpp"
 #include "solver/core/clock.hpp"
 #include "solver/core/error.hpp"
 #include "solver/fdem/fdem_world.hpp"
@@ -427,10 +428,6 @@ int unfinished_cases(const StudyDef& def, const fs::path& out) {
     }
   }
   return n;
-}
-
-double hertz_contact_time(double radius, double mass, double effective_young, double speed) {
-  return 2.868 * std::pow(mass * mass / (radius * effective_young * effective_young * speed), 0.2);
 }
 
 std::vector<CaseKey> plan_cases(const StudyDef& def) {
@@ -854,7 +851,8 @@ std::map<std::string, ParticlePlan> plan_particles(const StudyDef& def, const fs
     // triangles, fem and rigid, 1–2 m/s) lasted 0.5–1.0 of that time (the potential law's
     // corner contacts are stiff); 1.5 leaves half as much again for the tails of coarse meshes
     // (docs/study.md). The window is the cost: every step before and after contact counts.
-    pp.contact_time = hertz_contact_time(pp.radius, pp.mass, e_star, def.speed);
+    // The particle on the rigid block: its own mass and radius are the pair's effective ones.
+    pp.contact_time = contact::hertz_contact_time(pp.mass, pp.radius, e_star, def.speed);
     double max_gap = 0;
     for (const CaseKey& c : cases) {
       if (c.particle != name || (c.source_patch > 0 && !pp.source.contains(c.source_patch)))

@@ -128,9 +128,4 @@ int unfinished_cases(const StudyDef& def, const std::filesystem::path& out);
 StudyOutcome run_study(const StudyDef& def, const std::filesystem::path& out,
                        const StudyRunOptions& options);
 
-// Hertz contact time of a sphere (radius R, mass m) striking a rigid-backed elastic half-space at
-// speed v: t_c = 2.868 (m² / (R E*² v))^{1/5} (Johnson 1985, §11.4), s. Used to size "auto"
-// durations.
-double hertz_contact_time(double radius, double mass, double effective_young, double speed);
-
 }  // namespace asperity::study

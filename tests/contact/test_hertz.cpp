@@ -1,5 +1,6 @@
 // Hertz normal law and the closed-form impact against their formulas (Johnson 1985).
 #include <cmath>
+#include <numbers>
 
 #include <gtest/gtest.h>
 
@@ -47,4 +48,16 @@ TEST(HertzImpact, DurationFactorIsTheBetaFunctionIntegral) {
   // 2∫₀¹ (1 − x^{5/2})^{-1/2} dx = (4/5) B(2/5, 1/2), evaluated through lgamma.
   const double beta = std::exp(std::lgamma(0.4) + std::lgamma(0.5) - std::lgamma(0.9));
   EXPECT_NEAR(kHertzDurationFactor, 0.8 * beta, 1e-10);
+}
+
+TEST(HertzImpact, ContactTimeIsJohnsonsClosedForm) {
+  // Johnson (1985, §11.4): t_c = 2.868 (m²/(R E*² v))^{1/5}, here for a glass sphere (R = 1 cm,
+  // m = 2500·4/3πR³, E* = 30 GPa) on a rigid plane at 1 m/s. 2.868 is the book's constant to
+  // four figures (2.9432·(15/16)^{2/5} = 2.86818), so 2e-4 of it is the rounding's bound.
+  const double r = 0.01, m = 2500 * 4.0 / 3 * std::numbers::pi * r * r * r;
+  const double johnson = 2.868 * std::pow(m * m / (r * 3e10 * 3e10 * 1.0), 0.2);
+  EXPECT_NEAR(hertz_contact_time(m, r, 3e10, 1.0) / johnson, 1.0, 2e-4);
+  // Slower impacts last longer: t ∝ v^(−1/5), so 32 times faster halves it.
+  EXPECT_NEAR(hertz_contact_time(m, r, 3e10, 32.0) / hertz_contact_time(m, r, 3e10, 1.0), 0.5,
+              1e-12);
 }
