@@ -328,6 +328,20 @@ report_md = open(os.path.join(report, "report.md")).read()
 check("the report answers 'a few hundred triangles' and never says unresolved in the answer",
       "Is a few hundred triangles" in report_md and
       "unresolved" not in report_md.split("## The answer")[1].split("\n## ")[0], "")
+# Issue 28: a finest-resolution reference whose geometry term no particle measured says so in the answer and beside
+# its uncertainty, and never names discretization as the larger term.
+finest_refs = [r for r in tables.get("references.csv", []) if r.get("reference", "finest") != "source"]
+unmeasured = bool(finest_refs) and not any(r["geometry_from"] for r in finest_refs)
+check("geometry_unmeasured: only a finest reference with no geometry term anywhere",
+      study_report.geometry_unmeasured([{"reference": "finest", "geometry_from": ""}] * 2) and
+      not study_report.geometry_unmeasured([{"reference": "finest", "geometry_from": ""},
+                                            {"reference": "finest", "geometry_from": "1000"}]) and
+      not study_report.geometry_unmeasured([{"reference": "source", "geometry_from": ""}]), "")
+check("report.md says the geometry term is not measured exactly when no coarser resolution was refined",
+      (report_md.count("its geometry term is not measured") == 2) == unmeasured and
+      report_md.split("## The reference and its uncertainty")[1].count("| unknown: geometry not measured |") ==
+      sum(not r["geometry_from"] for r in finest_refs),
+      (unmeasured, [r["geometry_from"] for r in finest_refs]))
 
 # 5. recommend: JSON on stdout, a model the study has.
 scene = {"name": "new", "gravity": [0, 0, -9.81], "duration": 0.001,

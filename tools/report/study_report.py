@@ -716,6 +716,9 @@ def answer_section(doc, study, published):
     over = (f" Each particle is studied at {k} random orientations, each against its own reference: 'particles' below "
             f"are the {len(definition['particles'])} particle-orientations ({len(definition['particles']) // k} "
             f"particles x {k}), so each error is a distribution over particles and orientations." if k else "")
+    references = read_csv(os.path.join(study, "references.csv"))
+    if geometry_unmeasured(references):
+        doc.p(GEOMETRY_UNMEASURED)
     doc.p(f"To get within X % of {REFERENCE['name']}, placed by {pl}, use the cheapest model below; "
           "'median' holds for half the particles, 'p90' for 90 % of them. Each entry: model, surface triangles, "
           "element size at the strike point over the equivalent radius when refined, its error "
@@ -828,6 +831,25 @@ def source_reference_section(doc, references):
                "uncertainty (peak)", "uncertainty (duration)", "uncertainty (impulse)"], rows)
 
 
+def geometry_unmeasured(references):
+    """True for a finest-resolution reference whose geometry term no particle measured (no coarser resolution
+    refined): its uncertainty is the discretization term alone."""
+    finest = [r for r in references if r.get("reference", "finest") != "source"]
+    return bool(finest) and not any(r["geometry_from"] for r in finest)
+
+
+# What a reader of such a report must know: the source reference's measurement (docs/study.md, "The source
+# reference": 11 generated particles, the full study's converged fem at 2000 triangles against each particle's own
+# surface, lowest placement).
+GEOMETRY_UNMEASURED = (
+    "**This reference is fem at the finest resolution, not the particle, and its geometry term is not measured "
+    "here** (no coarser resolution was refined): every uncertainty below is its discretization term alone and "
+    "understates its distance from the particle. Measured against the particles' own source surfaces, the "
+    "converged fem at 2000 triangles is 5.0 % (median) and 6.4 % (p90) from the particle in peak force "
+    "(docs/study.md, 'The source reference'); `\"reference\": \"source\"` measures every error against the "
+    "particle (data/study/source.json, this study's twin: reports/study-source/).")
+
+
 def references_section(doc, references, growth, contact_factor=0):
     """The reference of each particle and the two terms of its uncertainty (references.csv); `growth` the refined
     levels' far-field grading (study.json), whose bias the uncertainty does not include; `contact_factor` their
@@ -842,16 +864,19 @@ def references_section(doc, references, growth, contact_factor=0):
           "force was extrapolated at (observed from three refined levels, or the assumed bracket's middle), and the "
           "two terms of its uncertainty, added in quadrature: discretization (the extrapolation's estimated error) "
           "and geometry (the change of the limit from the next coarser resolution that was refined: is the finest "
-          "geometry fine enough?; '-' where none was). The larger term is the one to refine.")
+          "geometry fine enough?; 'not measured' where none was). The larger term is the one to refine.")
+    if geometry_unmeasured(references):
+        doc.p(GEOMETRY_UNMEASURED)
     rows = []
     for r in references:
         d, g = num(r["peak_force_discretization"]), num(r["peak_force_geometry"])
-        dominant = "-" if math.isnan(d) else "discretization" if math.isnan(g) or d >= g else "geometry"
+        dominant = ("-" if math.isnan(d) else "unknown: geometry not measured" if not r["geometry_from"]
+                    else "discretization" if math.isnan(g) or d >= g else "geometry")
         rows.append([r["particle"], r["placement"], r["resolution"], fmt(r["peak_force"]),
                      (("observed " if r["order_observed"] == "true" else "assumed ") + fmt(r["peak_force_order"], 3))
                      if r["peak_force_order"] else "-",
                      pct(r["peak_force_discretization"]),
-                     (pct(r["peak_force_geometry"]) + f" (from {r['geometry_from']})") if r["geometry_from"] else "-",
+                     (pct(r["peak_force_geometry"]) + f" (from {r['geometry_from']})") if r["geometry_from"] else "not measured",
                      pct(r["peak_force_uncertainty"]), dominant, pct(r["contact_duration_uncertainty"]),
                      pct(r["impulse_uncertainty"])])
     doc.table(["particle", "placement", "N", "peak force (N)", "order (peak)", "discretization", "geometry",
