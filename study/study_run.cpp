@@ -65,9 +65,10 @@ std::string source_tag(const StudyDef& def, const ParticleSource& p, std::size_t
   std::ostringstream s;
   s.precision(17);
   if (p.file.empty()) {
-    s << "generated seed=" << p.seed << " size=" << p.size << " elongation=" << p.elongation
-      << " flatness=" << p.flatness << " angularity=" << p.angularity
-      << " roughness=" << p.roughness << " faces=" << p.faces;
+    const geometry::ParticleDef& g = p.generated;
+    s << "generated seed=" << g.seed << " size=" << g.size << " elongation=" << g.elongation
+      << " flatness=" << g.flatness << " angularity=" << g.angularity
+      << " roughness=" << g.roughness << " faces=" << g.faces;
   } else {
     s << "file=" << fs::absolute(p.file).string() << " scale=" << p.scale
       << " mtime=" << fs::last_write_time(p.file).time_since_epoch().count();
