@@ -60,15 +60,7 @@ int make_set(const fs::path& set_file, const fs::path& dir, bool quiet) {
     const io::JsonReader r = list.at(i);
     r.only_keys(
         {"name", "seed", "size", "elongation", "flatness", "angularity", "roughness", "faces"});
-    geometry::ParticleDef d;
-    d.seed =
-        static_cast<std::uint64_t>(r.integer("seed", 0, std::numeric_limits<long long>::max()));
-    d.size = r.number_or("size", d.size);
-    d.elongation = r.number_or("elongation", d.elongation);
-    d.flatness = r.number_or("flatness", d.flatness);
-    d.angularity = r.number_or("angularity", d.angularity);
-    d.roughness = r.number_or("roughness", d.roughness);
-    if (r.has("faces")) d.faces = static_cast<long>(r.integer("faces", 20, 2'000'000));
+    const geometry::ParticleDef d = geometry::read_particle_def(r);
     if (const std::string problem = geometry::particle_def_problem(d); !problem.empty())
       r.fail("", problem);
     // The name is a file under --out: the rule every command applies to such names.

@@ -226,26 +226,19 @@ void BM_CollisionSetup(benchmark::State& state, geometry::ParticleDef pd) {
 
 void register_set(int count, const std::string& file) {
   const io::Json set = io::read_json_file(file);
-  int k = 0;
-  for (const io::Json& p : set.at("particles")) {
-    if (k++ >= count) break;
-    const geometry::ParticleDef pd{.seed = p.at("seed").get<unsigned long long>(),
-                                   .elongation = p.at("elongation").get<double>(),
-                                   .flatness = p.at("flatness").get<double>(),
-                                   .angularity = p.at("angularity").get<double>(),
-                                   .roughness = p.at("roughness").get<double>(),
-                                   .faces = p.at("faces").get<long>()};
+  const io::JsonReader list = io::JsonReader(set, file, "").child("particles");
+  for (std::size_t k = 0, n = list.require_array(); k < n && static_cast<int>(k) < count; ++k) {
+    const io::JsonReader p = list.at(k);
+    const geometry::ParticleDef pd = geometry::read_particle_def(p);
     for (const long faces : {100L, 250L, 500L, 1000L}) {
-      const std::string name =
-          "BM_CollisionSet/" + p.at("name").get<std::string>() + "/" + std::to_string(faces);
+      const std::string name = "BM_CollisionSet/" + p.string("name") + "/" + std::to_string(faces);
       benchmark::RegisterBenchmark(name.c_str(), BM_CollisionSet, pd, faces)
           ->Iterations(1)
           ->UseManualTime()
           ->Unit(benchmark::kSecond);
     }
-    benchmark::RegisterBenchmark(
-        ("BM_CollisionSetup/" + p.at("name").get<std::string>() + "/1000").c_str(),
-        BM_CollisionSetup, pd)
+    benchmark::RegisterBenchmark(("BM_CollisionSetup/" + p.string("name") + "/1000").c_str(),
+                                 BM_CollisionSetup, pd)
         ->Iterations(3)
         ->Unit(benchmark::kMillisecond)
         ->MeasureProcessCPUTime();

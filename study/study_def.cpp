@@ -2,7 +2,6 @@
 #include "study/study_def.hpp"
 
 #include <algorithm>
-#include <limits>
 
 #include "solver/core/error.hpp"
 #include "solver/io/json_file.hpp"
@@ -87,14 +86,7 @@ void read_set(const JsonReader& p, const fs::path& base, std::vector<ParticleSou
     s.name = r.string("name");
     if (!names.empty() && std::find(names.begin(), names.end(), s.name) == names.end()) continue;
     if (names.empty() && out.size() >= count) break;
-    s.seed = static_cast<unsigned long long>(
-        r.integer("seed", 0, std::numeric_limits<long long>::max()));
-    s.size = r.number_or("size", s.size);
-    s.elongation = r.number_or("elongation", s.elongation);
-    s.flatness = r.number_or("flatness", s.flatness);
-    s.angularity = r.number_or("angularity", s.angularity);
-    s.roughness = r.number_or("roughness", s.roughness);
-    if (r.has("faces")) s.faces = static_cast<long>(r.integer("faces", 20, 2'000'000));
+    s.generated = geometry::read_particle_def(r);
     found.push_back(s.name);
     out.push_back(s);
   }
@@ -433,13 +425,14 @@ nlohmann::ordered_json definition_json(const StudyDef& def) {
   for (const ParticleSource& p : def.particles) {
     OJson j = {{"name", p.name}};
     if (p.file.empty()) {
-      j.update({{"seed", p.seed},
-                {"size", p.size},
-                {"elongation", p.elongation},
-                {"flatness", p.flatness},
-                {"angularity", p.angularity},
-                {"roughness", p.roughness},
-                {"faces", p.faces}});
+      const geometry::ParticleDef& g = p.generated;
+      j.update({{"seed", g.seed},
+                {"size", g.size},
+                {"elongation", g.elongation},
+                {"flatness", g.flatness},
+                {"angularity", g.angularity},
+                {"roughness", g.roughness},
+                {"faces", g.faces}});
     } else {
       j.update({{"file", p.file.filename().string()}, {"scale", p.scale}});
     }

@@ -11,6 +11,7 @@
 
 #include "solver/core/material.hpp"
 #include "solver/core/vec.hpp"
+#include "solver/geometry/random_particle.hpp"
 
 namespace asperity::study {
 
@@ -19,10 +20,9 @@ struct ParticleSource {
   std::string name;
   std::filesystem::path file;  // mesh file; empty for a generated particle
   double scale = 1;            // multiplies the file's coordinates
-  // Generated particles (geometry::ParticleDef fields).
-  unsigned long long seed = 0;
-  double size = 0.05, elongation = 0.75, flatness = 0.75, angularity = 0.5, roughness = 0.3;
-  long faces = 20480;
+  // A generated particle's definition (file empty), as its particle set lists it
+  // (geometry::read_particle_def), before particle_source centres, orients and scales its surface.
+  geometry::ParticleDef generated;
   // With `orientations: {"random": K}` each particle is studied K times, as K particles named
   // NAME-o1 ... NAME-oK: `orientation` is the k-th (from 0) of its K uniform random rotations and
   // `source_index` its particle's place in the list before that; -1: the study's `orientation`.

@@ -46,21 +46,11 @@ Mat3 orientation_matrix(const StudyDef& def, std::size_t index) {
 
 }  // namespace
 
-geometry::ParticleDef particle_def(const ParticleSource& p) {
-  return {.seed = p.seed,
-          .size = p.size,
-          .elongation = p.elongation,
-          .flatness = p.flatness,
-          .angularity = p.angularity,
-          .roughness = p.roughness,
-          .faces = p.faces};
-}
-
 SurfaceMesh particle_source(const StudyDef& def, std::size_t index) {
   const ParticleSource& p = def.particles.at(index);
   SurfaceMesh m;
   if (p.file.empty()) {
-    const geometry::ParticleDef d = particle_def(p);
+    const geometry::ParticleDef& d = p.generated;
     if (const std::string problem = geometry::particle_def_problem(d); !problem.empty()) {
       throw InputError(def.file.string() + ": particles: \"" + p.name + "\": " + problem);
     }

@@ -20,10 +20,6 @@ namespace asperity::study {
 // InputError for a particle that cannot be made.
 SurfaceMesh particle_source(const StudyDef& def, std::size_t index);
 
-// A generated particle's definition (ParticleSource's geometry::ParticleDef fields, as listed in
-// the particle set), before particle_source centres, orients and scales its surface.
-geometry::ParticleDef particle_def(const ParticleSource& p);
-
 // That surface simplified to exactly `faces` triangles and tetrahedralized with the study's
 // options (the mesher's defaults: element size = surface). As geometry::prepare_particle throws.
 geometry::PreparedParticle particle_mesh(const SurfaceMesh& source, const std::string& name,

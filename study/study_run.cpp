@@ -65,9 +65,10 @@ std::string source_tag(const StudyDef& def, const ParticleSource& p, std::size_t
   std::ostringstream s;
   s.precision(17);
   if (p.file.empty()) {
-    s << "generated seed=" << p.seed << " size=" << p.size << " elongation=" << p.elongation
-      << " flatness=" << p.flatness << " angularity=" << p.angularity
-      << " roughness=" << p.roughness << " faces=" << p.faces;
+    const geometry::ParticleDef& g = p.generated;
+    s << "generated seed=" << g.seed << " size=" << g.size << " elongation=" << g.elongation
+      << " flatness=" << g.flatness << " angularity=" << g.angularity
+      << " roughness=" << g.roughness << " faces=" << g.faces;
   } else {
     s << "file=" << fs::absolute(p.file).string() << " scale=" << p.scale
       << " mtime=" << fs::last_write_time(p.file).time_since_epoch().count();
@@ -387,7 +388,9 @@ void thin_rows(run::RunResult& r, int rows) {
 // tetrahedra, the block's own material and the potential law for both kinds, where the case runs
 // volume-hertz against a block 1e6 times stiffer for rigid and re-meshes surface.off. Measured on
 // tests/study/smoke_study.json: the run's dt is 0.91-1.07 of this for fem, 0.002-0.009 for rigid
-// (so rigid cases record 100-400 times the rows asked for before thin_rows).
+// (so rigid cases record 100-400 times the rows asked for before thin_rows). It is not scheduling
+// alone: it sets the case scene's record.every, so the rows of force.csv that the curve measures
+// and the tables read; run::predicted_step in its place would move them.
 double estimated_dt(const TetMesh& tets, const StudyDef& def, fdem::BodyKind kind, double radius) {
   const fdem::World world = fdem::make_world(particle_on_block(tets, def, kind, radius));
   return run::default_safety(kind == fdem::BodyKind::rigid ? run::StepRegime::fdem_rigid

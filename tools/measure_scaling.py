@@ -3,8 +3,8 @@
 through Slurm").
 
 Usage (a cluster up, SLURM_CONF set: scripts/slurm/local-cluster.sh start):
-  tools/measure_scaling.py STUDY.json OUT_DIR CSV [--repeats N] [--layouts 1x1,2x1,1x2]
-  tools/measure_scaling.py --table CSV     (the table again, from the CSV)
+  tools/measure_scaling.py STUDY.json OUT_DIR CSV [--repeats N] [--layouts 1x1,2x1,1x2] [--bin DIR]
+  tools/measure_scaling.py --table CSV [--bin DIR]    (the table again, from the CSV)
 
 Each repeat runs every layout RxT (R ranks per node, T threads each) once, in turn, as its own
 srun job (scripts/slurm/submit.sh --srun) into a fresh folder, so a change in the machine's load
@@ -12,16 +12,20 @@ falls on every layout alike. Writes one CSV row per run: the layout, the study's
 and summed case CPU, the task pool's accounting of its cases phase (share of worker time idle,
 seconds the end ran with idle workers), the job's elapsed time as Slurm saw it, and the load
 average before and after. Prints the medians per layout with the speed-up and efficiency against
-the first layout.
+the first layout; the medians are computed by the C++ (DIR/spread_table, default build/bin: the
+one quantile), this script only formats them.
 """
 import argparse
 import csv
 import os
 import re
 import shutil
-import statistics
 import subprocess
+import sys
 import time
+
+sys.path.insert(0, os.path.join(os.path.dirname(os.path.abspath(__file__)), "report"))
+from tabular import ROOT, spread  # noqa: E402
 
 submit = os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "scripts", "slurm", "submit.sh")
 LINE = re.compile(r"(\d+) cases \((\d+) run.*?in ([\d.]+) s wall, ([\d.]+) s CPU; (\d+) ranks, "
@@ -61,11 +65,13 @@ def main():
     ap.add_argument("--table", action="store_true", help="only print the table of STUDY (a CSV)")
     ap.add_argument("--repeats", type=int, default=3)
     ap.add_argument("--layouts", default="1x1,2x1,1x2")
+    ap.add_argument("--bin", default=str(ROOT / "build" / "bin"), help="the build's bin folder (spread_table)")
     a = ap.parse_args()
+    program = os.path.join(a.bin, "spread_table")
     layouts = [tuple(int(x) for x in s.split("x")) for s in a.layouts.split(",")]
     if a.table:
         with open(a.study, newline="") as f:
-            print_table(list(csv.DictReader(f)), [f"{r}x{t}" for r, t in layouts])
+            print_table(list(csv.DictReader(f)), [f"{r}x{t}" for r, t in layouts], program)
         return
     keys = ["repeat", "layout", "ranks", "workers", "cases", "ran", "wall_s", "job_elapsed_s",
             "cpu_s", "idle_pct", "drain_s", "load_before", "load_after"]
@@ -83,14 +89,17 @@ def main():
                 f.flush()
                 print(f"repeat {rep} {ranks}x{threads}: {r['wall_s']:.1f} s wall, {r['cpu_s']:.1f} s CPU, "
                       f"{r['idle_pct']:.1f} % idle, load {before:.1f} -> {r['load_after']:.1f}", flush=True)
-    print_table(rows, [f"{r}x{t}" for r, t in layouts])
+    print_table(rows, [f"{r}x{t}" for r, t in layouts], program)
 
 
-def print_table(rows, layouts):
-    """Medians per layout: speed-up and efficiency against the 1x1 median, and why: the speed-up
-    is (1x1 CPU / CPU) x (cores had / 1x1's cores had), cores had = CPU / wall."""
+def print_table(rows, layouts, program):
+    """Medians per layout (spread_table's): speed-up and efficiency against the 1x1 median, and
+    why: the speed-up is (1x1 CPU / CPU) x (cores had / 1x1's cores had), cores had = CPU / wall."""
+    medians = spread((((r["layout"], key), float(r[key])) for r in rows
+                      for key in ("wall_s", "cpu_s", "idle_pct", "drain_s")), program)
+
     def med(layout, key):
-        return statistics.median(float(r[key]) for r in rows if r["layout"] == layout)
+        return medians[(layout, key)][1]
     base, base_cores = med("1x1", "wall_s"), med("1x1", "cpu_s") / med("1x1", "wall_s")
     print("| ranks x threads | wall | case CPU | cores had (CPU / wall) | speed-up | efficiency | "
           "pool idle | end with idle workers |")

@@ -1,8 +1,10 @@
 // Closed-form elastic Hertz impact (Johnson 1985, Contact Mechanics, §11.4): the analytic
-// reference the validation gates compare against.
+// reference the validation gates compare against; and Hertz's contact at a given force (§4.2),
+// which the report's picture of a deformable sphere draws (app/hertz_numbers).
 #pragma once
 
 #include <cmath>
+#include <numbers>
 
 namespace asperity::contact {
 
@@ -30,6 +32,21 @@ inline HertzImpact hertz_impact(double mass_eff, double radius_eff, double young
 // The Hertz contact duration alone, s: t_c = 2.9432 δ_max / v = 2.868 (m*² / (R* E*² v))^{1/5}.
 inline double hertz_contact_time(double mass_eff, double radius_eff, double young_eff, double v) {
   return hertz_impact(mass_eff, radius_eff, young_eff, v).contact_duration;
+}
+
+// Hertz's contact under a normal force F (Johnson 1985, §4.2): the contact circle's radius and
+// the pressure at its centre, p(r) = p0 √(1 − r²/a²).
+struct HertzContact {
+  double radius = 0;         // a = (3 F R* / (4 E*))^{1/3}, m
+  double peak_pressure = 0;  // p0 = 3 F / (2π a²), Pa
+};
+
+// F (N), R* (m), E* (Pa).
+inline HertzContact hertz_contact(double force, double radius_eff, double young_eff) {
+  HertzContact c;
+  c.radius = std::pow(3.0 * force * radius_eff / (4.0 * young_eff), 1.0 / 3.0);
+  c.peak_pressure = 3.0 * force / (2.0 * std::numbers::pi * c.radius * c.radius);
+  return c;
 }
 
 }  // namespace asperity::contact

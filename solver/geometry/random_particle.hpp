@@ -6,6 +6,10 @@
 
 #include "solver/core/mesh.hpp"
 
+namespace asperity::io {
+class JsonReader;
+}
+
 namespace asperity::geometry {
 
 struct ParticleDef {
@@ -29,6 +33,13 @@ inline constexpr double kParticleAxisRatioMin = 0.05;
 // Checks the ranges above; returns "" or the problem, which starts with the key
 // ("elongation must lie in [0.05, 1] (got 2)").
 std::string particle_def_problem(const ParticleDef& def);
+
+// A generated particle's fields in JSON, as a particle set lists them (data/particles/set.json,
+// `asperity particle --set`, a study's "particles": {"set": ...}): "seed" (required, ≥ 0),
+// "size", "elongation", "flatness", "angularity", "roughness" and "faces" (in [20, 2,000,000]),
+// each ParticleDef's default when absent. The one reader of those fields; their ranges are
+// particle_def_problem's, for the caller to check where it reports them.
+ParticleDef read_particle_def(const io::JsonReader& r);
 
 // A star-shaped particle r(u)·u over the unit sphere, built on a geodesic icosphere (each
 // icosahedron face split into n² triangles, vertices projected onto the sphere):

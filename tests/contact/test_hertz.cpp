@@ -61,3 +61,17 @@ TEST(HertzImpact, ContactTimeIsJohnsonsClosedForm) {
   EXPECT_NEAR(hertz_contact_time(m, r, 3e10, 32.0) / hertz_contact_time(m, r, 3e10, 1.0), 0.5,
               1e-12);
 }
+
+TEST(HertzContact, AtTheImpactsPeakItIsTheOverlapsCircle) {
+  // At the peak of an impact the static Hertz contact holds: δ_max = a² / R* (Johnson 1985, §4.2)
+  // and the pressure p0 √(1 − r²/a²) integrates to F = (2/3) π a² p0. Both hold to
+  // round-off (a cube root, a power 0.4 and 1.5): 1e-13 relative.
+  const double m = 0.0052, r = 0.005, e = 3.3e10, v = 1.0;
+  const HertzImpact h = hertz_impact(m, r, e, v);
+  const HertzContact c = hertz_contact(h.peak_force, r, e);
+  EXPECT_NEAR(c.radius * c.radius / r / h.max_overlap, 1.0, 1e-13);
+  EXPECT_NEAR(2.0 / 3.0 * std::numbers::pi * c.radius * c.radius * c.peak_pressure / h.peak_force,
+              1.0, 1e-13);
+  // a grows as F^{1/3}: eight times the force doubles it.
+  EXPECT_NEAR(hertz_contact(8 * h.peak_force, r, e).radius / c.radius, 2.0, 1e-13);
+}

@@ -12,6 +12,7 @@
 #include "solver/geometry/repair_mesh.hpp"
 #include "solver/geometry/shape_metrics.hpp"
 #include "solver/geometry/splitmix64.hpp"
+#include "solver/io/json_file.hpp"
 
 namespace asperity::geometry {
 namespace {
@@ -81,6 +82,33 @@ TEST(RandomParticle, RejectsOutOfRangeParameters) {
   EXPECT_EQ(particle_def_problem({.size = 1e-300}),
             "size must lie in [1e-06, 1000] m (got 1e-300)");
   EXPECT_NE(particle_def_problem({.flatness = 5e-324}), "");
+}
+
+// A particle set's entry: the fields it gives, ParticleDef's defaults for those it leaves out (a
+// set lists them all, data/particles/set.json; a study's own list may not), and a seed or face
+// count out of range refused naming the key.
+TEST(RandomParticle, ReadsASetEntry) {
+  const io::Json set = io::Json::parse(R"({"particles": [
+      {"name": "rock_02", "seed": 1001, "size": 0.2256, "elongation": 0.772, "flatness": 0.477,
+       "angularity": 0.349, "roughness": 0.446, "faces": 20480},
+      {"name": "bare", "seed": 7}, {"name": "bad", "seed": -1}, {"name": "few", "seed": 1, "faces": 8}]})");
+  const io::JsonReader list = io::JsonReader(set, "set.json", "").child("particles");
+  const ParticleDef full = read_particle_def(list.at(0));
+  EXPECT_EQ(full.seed, 1001u);
+  EXPECT_EQ(full.size, 0.2256);
+  EXPECT_EQ(full.elongation, 0.772);
+  EXPECT_EQ(full.flatness, 0.477);
+  EXPECT_EQ(full.angularity, 0.349);
+  EXPECT_EQ(full.roughness, 0.446);
+  EXPECT_EQ(full.faces, 20480);
+  const ParticleDef bare = read_particle_def(list.at(1)), defaults;
+  EXPECT_EQ(bare.seed, 7u);
+  EXPECT_EQ(bare.size, defaults.size);
+  EXPECT_EQ(bare.elongation, defaults.elongation);
+  EXPECT_EQ(bare.roughness, defaults.roughness);
+  EXPECT_EQ(bare.faces, defaults.faces);
+  EXPECT_THROW(read_particle_def(list.at(2)), InputError);
+  EXPECT_THROW(read_particle_def(list.at(3)), InputError);
 }
 
 // Every corner of the usable range gives a valid closed solid of the asked size: the range the

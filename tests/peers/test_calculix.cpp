@@ -260,19 +260,14 @@ fs::path particle_surface(const ParticleCase& c, const fs::path& dir) {
   geometry::PipelineOptions o{.faces = 500, .tetrahedralize = false};
   fs::path source;
   if (c.set_name) {
-    const io::Json set =
-        io::read_json_file(fs::path(ASPERITY_SOURCE_DIR) / "data/particles/set.json");
-    for (const io::Json& e : set.at("particles")) {
-      if (e.at("name") != c.set_name) continue;
-      const geometry::ParticleDef d{.seed = e.at("seed").get<std::uint64_t>(),
-                                    .size = e.at("size"),
-                                    .elongation = e.at("elongation"),
-                                    .flatness = e.at("flatness"),
-                                    .angularity = e.at("angularity"),
-                                    .roughness = e.at("roughness"),
-                                    .faces = e.at("faces")};
+    const fs::path file = fs::path(ASPERITY_SOURCE_DIR) / "data/particles/set.json";
+    const io::Json set = io::read_json_file(file);
+    const io::JsonReader list = io::JsonReader(set, file, "").child("particles");
+    for (std::size_t i = 0, n = list.require_array(); i < n; ++i) {
+      if (list.at(i).string("name") != c.set_name) continue;
       source = dir / (std::string(c.set_name) + ".off");
-      geometry::write_surface_mesh(source, geometry::random_particle(d));
+      geometry::write_surface_mesh(
+          source, geometry::random_particle(geometry::read_particle_def(list.at(i))));
     }
   } else {
     source = fs::path(ASPERITY_SOURCE_DIR) / "../shared/data/scans" / c.scan;

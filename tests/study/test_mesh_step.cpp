@@ -109,7 +109,7 @@ TEST(MeshStep, CostRepairShortensTheSlowMeshesAndLeavesTheRest) {
   const auto mesh = [&](const std::string& name, double ratio) {
     for (const ParticleSource& p : def.particles) {
       if (p.name != name) continue;
-      geometry::ParticleDef pd = particle_def(p);
+      geometry::ParticleDef pd = p.generated;
       pd.size = 0.05;
       geometry::PipelineOptions o;
       o.faces = 1000;

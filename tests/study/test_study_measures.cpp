@@ -1,5 +1,5 @@
 // Known answers for the study's curve measures: skewness, cross-correlation lag, classes,
-// quantiles and the Hertz contact time.
+// quantiles and their spread, and the Hertz contact time.
 #include <cmath>
 #include <cstddef>
 #include <numbers>
@@ -90,6 +90,21 @@ TEST(Quantile, Type7) {
   EXPECT_DOUBLE_EQ(quantile({3, 1, 2}, 0.5), 2.0);
   EXPECT_DOUBLE_EQ(quantile({1, 2, 3, 4}, 0.5), 2.5);
   EXPECT_DOUBLE_EQ(quantile({0, 10}, 0.9), 9.0);
+}
+
+TEST(Quantile, Spread) {
+  // Five repeats in any order: the middle one and the extremes, exactly (no arithmetic on them).
+  const Spread five = spread({4.5, 2.8, 3.7, 7.5, 0.1});
+  EXPECT_EQ(five.count, 5u);
+  EXPECT_EQ(five.median, 3.7);
+  EXPECT_EQ(five.min, 0.1);
+  EXPECT_EQ(five.max, 7.5);
+  // An even count: the type-7 mean of the two middle ones, 2 + 0.5 (3 - 2), exact in binary.
+  EXPECT_EQ(spread({3, 1, 2, 4}).median, 2.5);
+  // No repeat: nothing to summarize, NaN rather than a made-up number.
+  const Spread none = spread({});
+  EXPECT_EQ(none.count, 0u);
+  EXPECT_TRUE(std::isnan(none.median) && std::isnan(none.min) && std::isnan(none.max));
 }
 
 TEST(LeastSquares, LineAndErrors) {

@@ -10,7 +10,9 @@ matplotlib's 3-D polygons and 2-D triangles need nothing beyond deps/debian-pack
   --hertz SCENE --hertz-out DIR   a deformable sphere on a block: DIR/hertz_contact_zone.png and
                                   .svg (contact pressure seen from below with the Hertz contact
                                   radius, the von Mises section under the contact, pressure
-                                  against radius beside Hertz's) and .json (the numbers)
+                                  against radius beside Hertz's) and .json (the numbers); Hertz's
+                                  numbers are asperity's (hertz_numbers, built beside ASPERITY:
+                                  solver/contact/hertz_impact.hpp), this script measures the mesh
   --study DIR [--resolution N] [--placement P]  (P: the first placement the study ran)
                                   each particle of an `asperity study` folder, fem and rigid at
                                   N triangles side by side: DIR/pictures/impact_PARTICLE.png,
@@ -148,6 +150,21 @@ def material(scene_path, body):
     return m, b
 
 
+def hertz_numbers(asperity, work, sphere):
+    """Hertz's numbers for a sphere on a rigid flat (sphere: mass, radius, young, poisson, speed,
+    and the force to draw the contact at), from the formulas' one place: the hertz_numbers
+    program beside asperity (solver/contact/hertz_impact.hpp)."""
+    program = os.path.join(os.path.dirname(os.path.abspath(asperity)), "hertz_numbers")
+    given, got = os.path.join(work, "hertz_sphere.json"), os.path.join(work, "hertz_numbers.json")
+    with open(given, "w") as fh:
+        json.dump(sphere, fh)
+    r = subprocess.run([program, given, got], stderr=subprocess.PIPE, text=True)
+    if r.returncode != 0:
+        raise RuntimeError(f"{program}: exit {r.returncode}: {r.stderr.strip()[:200]}")
+    with open(got) as fh:
+        return json.load(fh)
+
+
 def save(fig, out_dir, stem, svg):
     fig.savefig(os.path.join(out_dir, stem + ".png"), dpi=90, metadata={"Software": None})
     if svg:
@@ -162,19 +179,17 @@ def hertz_picture(asperity, scene, out_dir, work):
     summary = run_scene(asperity, scene, os.path.join(work, "hertz"))
     frame = Frame(os.path.join(work, "hertz", "vtk", "bodies_peak.vtu"))
     m, b = material(scene, "ball")
-    e_star = m["young"] / (1 - m["poisson"] ** 2)  # the block is fixed: rigid in the model
     x0 = frame.x - frame.u
     centre0 = x0.mean(axis=0)
     radius = float(np.max(np.linalg.norm(x0 - centre0, axis=1)))
     f_peak = summary["peak_force"]
-    # Hertz at the run's peak force (Johnson 1985, §4.2): a = (3FR/4E*)^(1/3), p0 = 3F/(2πa²).
-    a = (3 * f_peak * radius / (4 * e_star)) ** (1 / 3)
-    p0 = 3 * f_peak / (2 * math.pi * a * a)
-    # Hertz impact of the meshed mass (Johnson 1985, §11.4): its peak force, for the caption.
-    mass = m["density"] * frame.volume()
-    v = abs(b["velocity"][2])
-    d = (15 * mass * v * v / (16 * e_star * math.sqrt(radius))) ** 0.4
-    f_hertz = 4 / 3 * e_star * math.sqrt(radius) * d ** 1.5
+    # Hertz for the meshed sphere (its radius, its volume's mass) on the block, fixed and so rigid
+    # in the model: the contact radius a and centre pressure p0 at the run's peak force (Johnson
+    # 1985, §4.2), and the impact's peak force for the caption (§11.4).
+    hertz = hertz_numbers(asperity, os.path.join(work, "hertz"),
+                          {"mass": m["density"] * frame.volume(), "radius": radius, "young": m["young"],
+                           "poisson": m["poisson"], "speed": abs(b["velocity"][2]), "force": f_peak})
+    e_star, a, p0, f_hertz = hertz["e_star"], hertz["contact_radius"], hertz["peak_pressure"], hertz["peak_force"]
 
     x = frame.x
     centre = x.mean(axis=0)

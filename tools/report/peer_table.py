@@ -10,7 +10,8 @@ validation/cases), so every code's CPU time is for
 the same scene and step and measured in one run on one machine, then writes OUT_DIR/peers.csv
 (one row per case and peer) and OUT_DIR/peers.md: per case and peer the relative differences
 (asperity − peer)/peer of peak force, impulse, contact duration and restitution, both CPU times
-and their ratio, and for a peer that cannot express the case, its reason. With --yade-table DIR
+and their ratio, and for a peer that cannot express the case, its reason; the ratios' median and
+spread per peer are the C++'s (spread_table, built beside ASPERITY_EXE). With --yade-table DIR
 it also writes the YADE rows alone as DIR/crosscheck.csv and .md (reports/yade/, which the study
 report reads). The cost per step on a two-sphere scene and a 10,000-sphere bed is
 peer_cost.py's (OUT_DIR/cost.md); the `peers-report` target runs both. --tables-only rewrites the
@@ -23,9 +24,10 @@ import json
 import os
 import pathlib
 import platform
-import statistics
 import subprocess
 import sys
+
+from tabular import spread  # beside this file
 
 ROOT = pathlib.Path(__file__).resolve().parents[2]
 
@@ -174,18 +176,25 @@ def main(argv):
                   "(`--also-runs`; such a row's asperity CPU is this run's, its ratio that run's).", ""]
     if failed:
         lines += [f"{len(failed)} cases were not measured in this run; they are listed at the end of the table.", ""]
+    program = pathlib.Path(exe).resolve().parent / "spread_table"
+
+    def measured(peer):
+        return [r for r in rows if r["peer"] == peer and r["status"] not in ("not run",)
+                and not str(r["status"]).startswith("failed") and r["cpu_peer_s"] is not None]
+
+    ratio_spread = spread((((peer,), r["ratio_asperity_over_peer"]) for peer in peers for r in measured(peer)
+                           if r["ratio_asperity_over_peer"]), program)
     for peer in peers:
-        rs = [r for r in rows if r["peer"] == peer and r["status"] not in ("not run",)
-              and not str(r["status"]).startswith("failed") and r["cpu_peer_s"] is not None]
+        rs = measured(peer)
         nr = [r for r in rows if r["peer"] == peer and r["status"] == "not run"]
-        ratios = [r["ratio_asperity_over_peer"] for r in rs if r["ratio_asperity_over_peer"]]
+        ratio = ratio_spread.get((peer,))
         worst = {q: max((abs(r[q + "_rel_diff"]) for r in rs if r[q + "_rel_diff"] is not None), default=None)
                  for q in ("peak_force", "impulse", "contact_duration")}
         fl = [r for r in rows if r["peer"] == peer and str(r["status"]).startswith("failed")]
         lines.append(f"**{peer}**: {len(rs)} cases run, {len(nr)} not expressible, {len(fl)} refused by the peer "
                      "as it ran (reasons in the table). "
-                     + (f"CPU ratio asperity/{peer}: median {statistics.median(ratios):.3f}, "
-                        f"min {min(ratios):.3f}, max {max(ratios):.3f}. " if ratios else "")
+                     + (f"CPU ratio asperity/{peer}: median {ratio[1]:.3f}, "
+                        f"min {ratio[2]:.3f}, max {ratio[3]:.3f}. " if ratio else "")
                      + "Largest |difference|: " + ", ".join(f"{q} {fmt(v, '.2e')}" for q, v in worst.items()) + ".")
         lines.append("")
     lines += ["| case | law | recorded | steps | peer | Δ peak force | Δ impulse | Δ duration | Δ restitution | "
@@ -213,14 +222,14 @@ def main(argv):
     (out / "peers.md").write_text("\n".join(lines) + "\n")
     if yade_table and "yade" in peers:
         write_yade_table(yade_table, [r for r in rows if r["peer"] == "yade" and r["status"] != "not run"
-                                      and r["cpu_peer_s"] is not None])
+                                      and r["cpu_peer_s"] is not None], program)
     print(f"{len(files)} cases -> {out / 'peers.md'}", file=sys.stderr)
     return 1 if failed else 0
 
 
-def write_yade_table(out, rows):
+def write_yade_table(out, rows, program):
     """The YADE rows alone, in the columns of the earlier YADE-only table (study_report.py reads
-    crosscheck.csv)."""
+    crosscheck.csv); the ratios' median and spread are spread_table's (program)."""
     out.mkdir(parents=True, exist_ok=True)
     fields = ["case", "law", "steps", "peak_force_rel_diff", "impulse_rel_diff", "contact_duration_rel_diff",
               "cpu_asperity_s", "cpu_yade_s", "ratio"]
@@ -232,7 +241,7 @@ def write_yade_table(out, rows):
         w = csv.DictWriter(fh, fieldnames=fields)
         w.writeheader()
         w.writerows(table)
-    ratios = [r["ratio"] for r in table if r["ratio"]]
+    ratio = spread(((("yade",), r["ratio"]) for r in table if r["ratio"]), program).get(("yade",))
     cpu_a = sum(r["cpu_asperity_s"] or 0 for r in table)
     cpu_y = sum(r["cpu_yade_s"] or 0 for r in table)
     lines = ["# asperity against YADE: agreement and cost, case by case", "",
@@ -243,8 +252,8 @@ def write_yade_table(out, rows):
              "differences are (asperity − YADE)/YADE. docs/crosscheck.md explains every systematic difference.", "",
              f"{len(table)} cases cross-checked. CPU in all: asperity {cpu_a:.3f} s, YADE {cpu_y:.3f} s"
              + (f" (ratio {cpu_a / cpu_y:.3f})" if cpu_y else "") + "."
-             + (f" Ratio asperity/YADE per case: median {statistics.median(ratios):.3f}, min {min(ratios):.3f}, "
-                f"max {max(ratios):.3f}." if ratios else ""), "",
+             + (f" Ratio asperity/YADE per case: median {ratio[1]:.3f}, min {ratio[2]:.3f}, "
+                f"max {ratio[3]:.3f}." if ratio else ""), "",
              "| case | law | steps | Δ peak force | Δ impulse | Δ duration | asperity CPU s | YADE CPU s | asperity/YADE |",
              "|---|---|---|---|---|---|---|---|---|"]
 

@@ -5,7 +5,7 @@ interleaved, in one command.
     perf_table.py BUILD OUT [--pairs N] [--peers lammps,liggghts,yade] [--baseline BUILD0]
                   [--pressed-steps N] [--bed-steps N] [--smoke]
 
-BUILD is a release build folder (BUILD/bin/asperity, BUILD/bin/bench_dem). N pairs (default 5)
+BUILD is a release build folder (BUILD/bin/asperity, BUILD/bin/bench_dem, BUILD/bin/spread_table). N pairs (default 5)
 each run, one after the other, so that a change of the machine's load hits every code alike:
 
 1. `bench_dem` BM_Packing10k (mindlin; the pressed 10k lattice, ~29,000 persistent contacts):
@@ -18,7 +18,8 @@ each run, one after the other, so that a change of the machine's load hits every
    "Cost"; each peer's inputs written by its adapter from the scene).
 
 Every figure is the median over the pairs with its spread (min–max); a peer's ratio to asperity is
-taken within each pair (same crosscheck invocation) and its median and spread reported. Writes
+taken within each pair (same crosscheck invocation) and its median and spread reported (both
+computed by BUILD/bin/spread_table, the C++ that owns the median; this script runs and formats). Writes
 OUT/perf.md, OUT/perf.csv and OUT/bench/*.json (the scenes and the runs into BUILD/perf-runs/), with the CPU model (/proc/cpuinfo) and the load
 average before and after. Exit 1 when a code failed or could not express a scene (listed, not left
 out), 2 on bad arguments.
@@ -33,9 +34,10 @@ import os
 import pathlib
 import platform
 import resource
-import statistics
 import subprocess
 import sys
+
+from tabular import spread  # beside this file
 
 ROOT = pathlib.Path(__file__).resolve().parents[2]
 sys.path.insert(0, str(ROOT / "tools" / "cases"))
@@ -106,10 +108,6 @@ class Samples:
 
     def error(self, what, why):
         self.errors.setdefault(what, why)
-
-
-def spread(vals):
-    return statistics.median(vals), min(vals), max(vals)
 
 
 def run_pair(k, a, s, scenes, peers, out, work, baseline, smoke):
@@ -197,7 +195,10 @@ def fmt(x, unit):
     return f"{x:.3f}" if abs(x) < 10 else f"{x:.2f}"
 
 
-def write_tables(s, out, meta, figure_names):
+def write_tables(s, out, meta, figure_names, program):
+    """perf.csv and perf.md; the medians and spreads are spread_table's (program)."""
+    figures = spread(((key, v) for key, vals in s.values.items() for v in vals), program)
+    ratios = spread(((key, v) for key, vals in s.ratios.items() for v in vals), program)
     rows = []
     for key, title, unit in FIGURES:
         key = key.replace("pressed-10k", figure_names["pressed"]).replace("bed-10k", figure_names["bed"])
@@ -205,12 +206,11 @@ def write_tables(s, out, meta, figure_names):
         for (fig, code, build), vals in sorted(s.values.items()):
             if fig != key:
                 continue
-            med, lo, hi = spread(vals)
+            _, med, lo, hi = figures[(fig, code, build)]
             row = {"figure": fig, "title": title, "unit": unit or "count", "code": code, "build": build,
                    "pairs": len(vals), "median": med, "min": lo, "max": hi}
-            if (fig, code) in s.ratios:
-                r = s.ratios[(fig, code)]
-                row["over_asperity_median"], row["over_asperity_min"], row["over_asperity_max"] = spread(r)
+            if (fig, code) in ratios:
+                _, row["over_asperity_median"], row["over_asperity_min"], row["over_asperity_max"] = ratios[(fig, code)]
             rows.append(row)
     fields = ["figure", "title", "unit", "code", "build", "pairs", "median", "min", "max", "over_asperity_median",
               "over_asperity_min", "over_asperity_max"]
@@ -272,7 +272,7 @@ def main(argv):
         print(f"perf_table.py: unknown arguments {rest}", file=sys.stderr)
         return 2
     for b in [build] + ([baseline] if baseline else []):
-        for exe in ("asperity", "bench_dem"):
+        for exe in ("asperity", "bench_dem") + (("spread_table",) if b == build else ()):
             if not (b / "bin" / exe).exists():
                 print(f"perf_table.py: {b / 'bin' / exe}: not built", file=sys.stderr)
                 return 2
@@ -289,7 +289,7 @@ def main(argv):
         run_pair(k, build, s, scenes, peers, out, work, baseline, smoke)
     meta = {"command": " ".join(argv), "cpu": cpu_model(), "pairs": pairs, "baseline": str(baseline or ""),
             "load_before": load_before, "load_after": " ".join(f"{x:.1f}" for x in os.getloadavg())}
-    write_tables(s, out, meta, names)
+    write_tables(s, out, meta, names, build / "bin" / "spread_table")
     for what, why in s.errors.items():
         print(f"perf_table.py: {what}: {why}", file=sys.stderr)
     return 1 if s.errors else 0

@@ -2,7 +2,7 @@
 """Wall time and idle fraction of a study on W workers, from its measured per-case CPU seconds.
 
 Usage: schedule_estimate.py CASES.csv [W ...]
-       schedule_estimate.py --cluster-study FULL_CASES.csv [W ...]
+       schedule_estimate.py --cluster-study FULL_CASES.csv [W ...] [--bin DIR]
 Replays the task pool of cluster/ (one case at a time to the first free worker) in the
 order `asperity study` hands the cases out (study_run.cpp, case_weight: the most expensive first)
 and, for comparison, in the study's plan order; each case takes its measured cpu_seconds (meshing
@@ -18,15 +18,15 @@ rigid-penalty and the spheres), each costed from the full study's measured cases
   - h = 0.02 R costs what 0.04 R does times the measured growth from 0.08 to 0.04 R, at least 2
     (each halving of h halves the step, and the growth measured so far repeats);
   - a case that failed in the full study (no CPU) costs the median of the others at its model,
-    resolution and level.
+    resolution and level (the C++'s median: DIR/spread_table, default build/bin).
 """
 import heapq
 import math
-import statistics
+import pathlib
 import sys
 from collections import defaultdict
 
-from tabular import read_csv  # beside this file
+from tabular import ROOT, read_csv, spread  # beside this file
 
 
 def weight(model, resolution, relative_size):
@@ -53,9 +53,9 @@ def replay(costs, workers):
     return makespan, 1 - sum(costs) / (workers * makespan), makespan - first_idle
 
 
-def cluster_study(rows):
+def cluster_study(rows, program):
     """The cluster study's cases as (model, resolution, relative_size, cpu_seconds) in plan order,
-    costed from the full study's rows (the rules in the module's doc)."""
+    costed from the full study's rows (the rules in the module's doc); program: spread_table."""
     cost = {}
     by_kind = defaultdict(list)
     for r in rows:
@@ -64,9 +64,11 @@ def cluster_study(rows):
             cost[(r["particle"],) + key] = float(r["cpu_seconds"])
             by_kind[key].append(float(r["cpu_seconds"]))
 
+    medians = spread(((kind, c) for kind, costs in by_kind.items() for c in costs), program)
+
     def measured(p, model, n, h):
         c = cost.get((p, model, n, h))
-        return c if c is not None else statistics.median(by_kind[(model, n, h)])
+        return c if c is not None else medians[(model, n, h)][1]
 
     cases = []
     particles = list(dict.fromkeys(r["particle"] for r in rows))
@@ -87,12 +89,17 @@ def cluster_study(rows):
 
 def main():
     args = sys.argv[1:]
+    program = ROOT / "build" / "bin" / "spread_table"
+    if "--bin" in args:
+        i = args.index("--bin")
+        program = pathlib.Path(args[i + 1]) / "spread_table"
+        del args[i:i + 2]
     modelled = args and args[0] == "--cluster-study"
     if modelled:
         args = args[1:]
     rows = read_csv(args[0])
     if modelled:
-        cases = cluster_study(rows)
+        cases = cluster_study(rows, program)
     else:
         cases = [(r["model"], r["resolution"], r["element_size_rel"], float(r["cpu_seconds"]))
                  for r in rows if r["cpu_seconds"]]
