@@ -268,7 +268,7 @@ void pair_forces_each(SphereWorld& w, double dt) {
 // results are the same bit for bit; maxima (the overlap output, the largest overlap ratio) do not
 // depend on order. BM_Packing10k mindlin: 1.43x the loop one contact after another
 // (docs/performance.md).
-constexpr std::size_t kBatch = 64;  // pairs per batch: its columns stay in L1 (~28 kB)
+constexpr std::size_t kBatch = 32;  // pairs per batch: its columns stay in L1 (~16 kB)
 
 // Stage 1: pairs [k0, k1). Apart pairs: their gap output and cleared history (apart). Touching
 // ones: their overlap output taken, and handed in list order to touching(t, k, d, dist, overlap),
@@ -467,13 +467,6 @@ void gather_mindlin(const SphereWorld& w, std::size_t m, std::size_t k, const Ve
 void scatter_mindlin(SphereWorld& w, const std::size_t* pair, std::size_t t,
                      const MindlinColumns& b) {
   double max_ratio = w.max_overlap_ratio;
-  for (std::size_t m = 0; m < t; ++m) {
-    PairContact& p = w.pairs[pair[m]];
-    p.spring = Vec3(b.new_spring[0][m], b.new_spring[1][m], b.new_spring[2][m]);
-    p.viscous = b.new_viscous[m];
-    max_ratio = std::max(max_ratio, b.ratio[m]);
-  }
-  w.max_overlap_ratio = max_ratio;
   const auto col = [](const double(&a)[3][kColumn], std::size_t m) {
     return Vec3(a[0][m], a[1][m], a[2][m]);
   };
@@ -483,7 +476,11 @@ void scatter_mindlin(SphereWorld& w, const std::size_t* pair, std::size_t t,
     const int i = w.pairs[pair[m]].i, bi = w.body[i];
     Vec3 fi = w.force.col(i), ti = w.torque.col(i), fni = w.contacts.normal_force.col(bi);
     for (; m < t && w.pairs[pair[m]].i == i; ++m) {
-      const int j = w.pairs[pair[m]].j, bj = w.body[j];
+      PairContact& p = w.pairs[pair[m]];
+      p.spring = col(b.new_spring, m);
+      p.viscous = b.new_viscous[m];
+      max_ratio = std::max(max_ratio, b.ratio[m]);
+      const int j = p.j, bj = w.body[j];
       const Vec3 f = col(b.force, m), fn = col(b.normal_force, m);
       fi += f;
       w.force.col(j) -= f;
@@ -498,6 +495,7 @@ void scatter_mindlin(SphereWorld& w, const std::size_t* pair, std::size_t t,
     w.contacts.normal_force.col(bi) = fni;
   }
   w.dissipated = dissipated;
+  w.max_overlap_ratio = max_ratio;
   w.contact_updates += static_cast<long>(t);
 }
 
