@@ -266,7 +266,7 @@ void pair_forces_each(SphereWorld& w, double dt) {
 // Every contact takes the same operations on the same values as when computed whole, and the sums
 // (force, torque, contact output, dissipated energy) are added in the order of the list, so the
 // results are the same bit for bit; maxima (the overlap output, the largest overlap ratio) do not
-// depend on order. BM_Packing10k mindlin: 1.43x the loop one contact after another
+// depend on order. BM_Packing10k mindlin: 1.50x the loop one contact after another
 // (docs/performance.md).
 constexpr std::size_t kBatch = 32;  // pairs per batch: its columns stay in L1 (~16 kB)
 
