@@ -171,12 +171,30 @@ void rebuild_pairs(SphereWorld& world) {
 
 enum class PairLawKind { hertz_mindlin, hertz, linear };
 
-// Sphere–sphere contacts of the candidate pairs. The list is sorted by i: sphere i's force,
+// A candidate pair apart (|d|² = d2, reach the sum of the radii; dist: |d| if it was taken, else
+// 0). Its gap is output only where it would raise a body's largest overlap (the gap reach − |d|
+// exceeds s where |d|² < (reach − s)²): the root is taken for those alone. Its history is
+// cleared only where it holds something: a candidate that stays apart costs no store.
+void apart(SphereWorld& w, PairContact& p, int bi, int bj, double d2, double reach, double dist) {
+  std::vector<double>& touch = w.contacts.overlap;
+  if (const double s = std::min(touch[bi], touch[bj]); dist > 0 || d2 < (reach - s) * (reach - s)) {
+    const double gap = reach - (dist > 0 ? dist : std::sqrt(d2));
+    touch[bi] = std::max(touch[bi], gap);
+    touch[bj] = std::max(touch[bj], gap);
+  }
+  if (p.viscous != 0 || p.spring != Vec3::Zero()) {
+    p.spring.setZero();
+    p.viscous = 0;
+  }
+}
+
+// Sphere–sphere contacts of the candidate pairs, one after another (the Hertz and linear laws;
+// Hertz–Mindlin's are staged: mindlin_pair_forces). The list is sorted by i: sphere i's force,
 // torque and contact output are summed in registers over its run of pairs and stored once (the
 // same sums in the same order as adding into the arrays pair by pair, without a store and reload
 // per pair). The spheres' contact force output is their force total (compute_forces).
 template <PairLawKind kind>
-void pair_forces(SphereWorld& w, double dt) {
+void pair_forces_each(SphereWorld& w, double dt) {
   const int nm = static_cast<int>(w.materials.size());
   const std::size_t np = w.pairs.size();
   std::vector<double>& touch = w.contacts.overlap;
@@ -185,7 +203,6 @@ void pair_forces(SphereWorld& w, double dt) {
     const Vec3 xi = w.x.col(i), vi = w.v.col(i), wi = w.w.col(i), vei = w.v_end.col(i);
     const double ri = w.radius[i];
     Vec3 fi = w.force.col(i), ti = w.torque.col(i), fni = w.contacts.normal_force.col(bi);
-    double si = touch[bi];
     for (; k < np && w.pairs[k].i == i; ++k) {
       PairContact& p = w.pairs[k];
       const int j = p.j, bj = w.body[j];
@@ -194,18 +211,7 @@ void pair_forces(SphereWorld& w, double dt) {
       const double dist = d2 < reach * reach ? std::sqrt(d2) : 0.0;  // apart: no root yet
       const double overlap = reach - dist;
       if (dist == 0 || overlap <= 0) {
-        // Apart. Its gap is output only where it would raise a body's largest overlap (the gap
-        // reach − |d| exceeds s where |d|² < (reach − s)²): the root is taken for those alone.
-        if (const double s = std::min(si, touch[bj]); dist > 0 || d2 < (reach - s) * (reach - s)) {
-          const double gap = dist > 0 ? overlap : reach - std::sqrt(d2);
-          si = std::max(si, gap);
-          touch[bj] = std::max(touch[bj], gap);
-        }
-        // Cleared only where it holds something: a candidate that stays apart costs no store.
-        if (p.viscous != 0 || p.spring != Vec3::Zero()) {
-          p.spring.setZero();
-          p.viscous = 0;
-        }
+        apart(w, p, bi, bj, d2, reach, dist);
         continue;
       }
       const PairLaw& law = w.laws[p.law];
@@ -237,13 +243,279 @@ void pair_forces(SphereWorld& w, double dt) {
       ++w.contact_updates;
       fni += c.normal_force;
       w.contacts.normal_force.col(bj) -= c.normal_force;
-      si = std::max(si, overlap);
+      touch[bi] = std::max(touch[bi], overlap);
       touch[bj] = std::max(touch[bj], overlap);
     }
     w.force.col(i) = fi;
     w.torque.col(i) = ti;
     w.contacts.normal_force.col(bi) = fni;
-    touch[bi] = si;
+  }
+}
+
+// Hertz–Mindlin sphere–sphere contacts (the law of the packings), staged over batches of pairs
+// so that the roots of different contacts overlap. One contact's law is a chain of dependent roots
+// and quotients (|d|, 1/|d|, δ^{1/2}, δ^{1/4}, the spring's rotation factor) some 150 cycles long
+// and ~250 instructions wide: taken one contact after another (pair_forces_each), the core's
+// reorder window holds about two contacts and waits on the chain. Each stage is a loop over the
+// batch whose iterations do not depend on each other:
+//   1. distances (stage_distances): the apart pairs' gap output and history; what the law reads
+//      of the touching ones gathered into columns, one array per component (gather_mindlin);
+//   2. the law over the columns, vectorised by the compiler: 8 contacts per instruction with
+//      AVX-512 (mindlin_columns);
+//   3. the contacts' history back, and the sums in list order (scatter_mindlin).
+// Every contact takes the same operations on the same values as when computed whole, and the sums
+// (force, torque, contact output, dissipated energy) are added in the order of the list, so the
+// results are the same bit for bit; maxima (the overlap output, the largest overlap ratio) do not
+// depend on order. BM_Packing10k mindlin: 1.50x the loop one contact after another
+// (docs/performance.md).
+constexpr std::size_t kBatch = 32;  // pairs per batch: its columns stay in L1 (~16 kB)
+
+// Stage 1: pairs [k0, k1). Apart pairs: their gap output and cleared history (apart). Touching
+// ones: their overlap output taken, and handed in list order to touching(t, k, d, dist, overlap),
+// t counting them from 0. Returns how many.
+template <class Touching>
+std::size_t stage_distances(SphereWorld& w, std::size_t k0, std::size_t k1, Touching touching) {
+  std::vector<double>& touch = w.contacts.overlap;
+  std::size_t t = 0;
+  for (std::size_t k = k0; k < k1; ++k) {
+    PairContact& p = w.pairs[k];
+    const int i = p.i, j = p.j, bi = w.body[i], bj = w.body[j];
+    const Vec3 d = w.x.col(i) - w.x.col(j);
+    const double reach = w.radius[i] + w.radius[j], d2 = d.squaredNorm();
+    const double dist = d2 < reach * reach ? std::sqrt(d2) : 0.0;  // apart: no root yet
+    const double overlap = reach - dist;
+    if (dist == 0 || overlap <= 0) {
+      apart(w, p, bi, bj, d2, reach, dist);
+      continue;
+    }
+    touch[bi] = std::max(touch[bi], overlap);
+    touch[bj] = std::max(touch[bj], overlap);
+    touching(t++, k, d, dist, overlap);
+  }
+  return t;
+}
+
+// A column's length: a batch and a cache line more, so that the columns do not lie a multiple of
+// 4 kB apart (loads and stores that far apart wait on each other: 4K aliasing).
+constexpr std::size_t kColumn = kBatch + 8;
+
+// What the Hertz–Mindlin law reads and gives of a batch of touching contacts, in columns (one
+// array per component and quantity), so that the compiler runs the law over several contacts per
+// instruction (mindlin_columns).
+struct MindlinColumns {
+  // In, gathered by gather_mindlin.
+  double d[3][kColumn];                                                   // x_i − x_j, m
+  double dist[kColumn], overlap[kColumn];                                 // |d|, reach − |d|, m
+  double ri[kColumn], rj[kColumn];                                        // radii, m
+  double vi[3][kColumn], wi[3][kColumn], vj[3][kColumn], wj[3][kColumn];  // m/s, rad/s
+  double dv_end[3][kColumn];                    // v_end,i − v_end,j, m/s
+  double spring[3][kColumn], viscous[kColumn];  // history (last step's spring, unrotated), N
+  double k[kColumn], damping[kColumn], shear[kColumn], shear_damping[kColumn], friction[kColumn];
+  double inv_min_radius[kColumn];
+  // Out.
+  double force[3][kColumn], normal_force[3][kColumn];   // on sphere i, N
+  double torque_i[3][kColumn], torque_j[3][kColumn];    // arm1 × force, arm2 × force, N·m
+  double dissipated[kColumn];                           // J
+  double ratio[kColumn];                                // overlap / smaller radius
+  double new_spring[3][kColumn], new_viscous[kColumn];  // history, N
+};
+
+inline double dot3(double ax, double ay, double az, double bx, double by, double bz) {
+  return (ax * bx + ay * by) + az * bz;
+}
+
+#if defined(__x86_64__) && defined(__GNUC__) && !defined(__clang__)
+// Copies for x86-64-v4 and x86-64-v3 beside the baseline's, chosen at load time. GCC 12 vectorises
+// the v4 copy (AVX-512: 8 contacts per instruction, the selects as masks); its cost model leaves
+// the v3 and baseline copies scalar (they gain from the staging alone). No fused multiply-add in
+// any (this file is compiled without contraction), so all three give the same bits.
+[[gnu::target_clones("arch=x86-64-v4", "arch=x86-64-v3", "default")]]
+#endif
+void mindlin_columns(MindlinColumns& b, std::size_t t, double dt) {
+  // hertz_contact<true> written out in scalars over the columns. Each line is the operation the
+  // Eigen expression it replaces performs, in the same order (a 3-vector's dot product and squared
+  // norm are (x x' + y y') + z z', as Eigen's two-lane reduction sums them; a cross product is
+  // Eigen's (a_y b_z − a_z b_y, …)), no multiply-add is fused (-ffp-contract=off for this file),
+  // and both sides of the Coulomb test are computed and one chosen, so every contact gets the bits
+  // it gets computed whole. The formulas: contact::hertz_normal,
+  // contact::rotate_into_tangent_plane, contact::tangential_spring (Hertz–Mindlin:
+  // contact::hertz_mindlin) and outcome().
+  for (std::size_t m = 0; m < t; ++m) {
+    // The normal, one quotient (n = d · (1/|d|)).
+    const double inv = 1.0 / b.dist[m];
+    const double nx = b.d[0][m] * inv, ny = b.d[1][m] * inv, nz = b.d[2][m] * inv;
+    const double overlap = b.overlap[m];
+    b.ratio[m] = overlap * b.inv_min_radius[m];
+    // Contact arms and the relative velocity at the contact point.
+    const double a1 = -(b.ri[m] - 0.5 * overlap), a2 = b.rj[m] - 0.5 * overlap;
+    const double a1x = a1 * nx, a1y = a1 * ny, a1z = a1 * nz;
+    const double a2x = a2 * nx, a2y = a2 * ny, a2z = a2 * nz;
+    const double wix = b.wi[0][m], wiy = b.wi[1][m], wiz = b.wi[2][m];
+    const double wjx = b.wj[0][m], wjy = b.wj[1][m], wjz = b.wj[2][m];
+    const double vx =
+        (b.vi[0][m] + (wiy * a1z - wiz * a1y)) - (b.vj[0][m] + (wjy * a2z - wjz * a2y));
+    const double vy =
+        (b.vi[1][m] + (wiz * a1x - wix * a1z)) - (b.vj[1][m] + (wjz * a2x - wjx * a2z));
+    const double vz =
+        (b.vi[2][m] + (wix * a1y - wiy * a1x)) - (b.vj[2][m] + (wjx * a2y - wjy * a2x));
+    const double rate_end = -dot3(b.dv_end[0][m], b.dv_end[1][m], b.dv_end[2][m], nx, ny, nz);
+    const double vn = dot3(vx, vy, vz, nx, ny, nz);
+    const double rate = -vn;
+    // Hertz's normal force with Tsuji's dashpot (contact::hertz_normal).
+    const double sqrt_d = std::sqrt(overlap), fourth_d = std::sqrt(sqrt_d);
+    const double elastic = b.k[m] * overlap * sqrt_d;
+    const double damping = b.damping[m] * fourth_d * rate_end;
+    const double sum = elastic + damping;
+    const double fn = 0.0 < sum ? sum : 0.0;  // std::max(0.0, sum)
+    // Last step's spring rotated into the tangent plane (contact::rotate_into_tangent_plane).
+    const double sx0 = b.spring[0][m], sy0 = b.spring[1][m], sz0 = b.spring[2][m];
+    const double sn = dot3(sx0, sy0, sz0, nx, ny, nz);
+    double sx = sx0 - sn * nx, sy = sy0 - sn * ny, sz = sz0 - sn * nz;
+    const double ss = dot3(sx, sy, sz, sx, sy, sz);
+    const double scale = std::sqrt(dot3(sx0, sy0, sz0, sx0, sy0, sz0) / ss);
+    sx = ss > 0 ? sx * scale : sx;
+    sy = ss > 0 ? sy * scale : sy;
+    sz = ss > 0 ? sz * scale : sz;
+    // The tangential spring with its Coulomb cap (contact::tangential_spring).
+    const double slx = vx - vn * nx, sly = vy - vn * ny, slz = vz - vn * nz;
+    const double kt = b.shear[m] * sqrt_d, ct = b.shear_damping[m] * fourth_d;
+    const double kdt = kt * dt, mct = -ct;
+    const double trx = sx - kdt * slx, try_ = sy - kdt * sly, trz = sz - kdt * slz;
+    const double fdx = mct * slx, fdy = mct * sly, fdz = mct * slz;
+    const double tfx = trx + fdx, tfy = try_ + fdy, tfz = trz + fdz;
+    const double cap = b.friction[m] * fn;
+    const double tf2 = dot3(tfx, tfy, tfz, tfx, tfy, tfz);
+    const bool sliding = tf2 > cap * cap;
+    // Sliding: μ F_n along the trial force, carried by the spring; the work of the slip.
+    const double total = std::sqrt(tf2);
+    const double share = cap / total;
+    const double excess = std::sqrt(dot3(trx, try_, trz, trx, try_, trz)) - cap;
+    const double slid = cap * (0.0 < excess ? excess : 0.0) / kt;
+    const double slide_x = total > 0 ? share * tfx : 0.0;
+    const double slide_y = total > 0 ? share * tfy : 0.0;
+    const double slide_z = total > 0 ? share * tfz : 0.0;
+    // Sticking: spring plus dashpot; the dashpot's work.
+    const double stick = -dot3(fdx, fdy, fdz, slx, sly, slz) * dt;
+    const double spx = sliding ? slide_x : trx, spy = sliding ? slide_y : try_,
+                 spz = sliding ? slide_z : trz;
+    const double ftx = sliding ? slide_x : tfx, fty = sliding ? slide_y : tfy,
+                 ftz = sliding ? slide_z : tfz;
+    const double tangential_work = sliding ? (kt > 0 ? slid : 0.0) : stick;
+    // The contact's outcome (outcome()): total force, normal part, work of the normal dashpot.
+    const double nfx = fn * nx, nfy = fn * ny, nfz = fn * nz;
+    const double viscous_now = fn - elastic;
+    b.dissipated[m] = 0.5 * (b.viscous[m] + viscous_now) * rate * dt + tangential_work;
+    b.new_viscous[m] = viscous_now;
+    b.new_spring[0][m] = spx;
+    b.new_spring[1][m] = spy;
+    b.new_spring[2][m] = spz;
+    const double fx = nfx + ftx, fy = nfy + fty, fz = nfz + ftz;
+    b.normal_force[0][m] = nfx;
+    b.normal_force[1][m] = nfy;
+    b.normal_force[2][m] = nfz;
+    b.force[0][m] = fx;
+    b.force[1][m] = fy;
+    b.force[2][m] = fz;
+    b.torque_i[0][m] = a1y * fz - a1z * fy;
+    b.torque_i[1][m] = a1z * fx - a1x * fz;
+    b.torque_i[2][m] = a1x * fy - a1y * fx;
+    b.torque_j[0][m] = a2y * fz - a2z * fy;
+    b.torque_j[1][m] = a2z * fx - a2x * fz;
+    b.torque_j[2][m] = a2x * fy - a2y * fx;
+  }
+}
+
+// The law's columns of contacts [m0, m1) of a batch.
+void set_mindlin_law(const PairLaw& law, std::size_t m0, std::size_t m1, MindlinColumns& b) {
+  for (std::size_t m = m0; m < m1; ++m) {
+    b.k[m] = law.hertz.normal.k;
+    b.damping[m] = law.hertz.normal.damping;
+    b.shear[m] = law.hertz.shear;
+    b.shear_damping[m] = law.hertz.shear_damping;
+    b.friction[m] = law.hertz.friction;
+    b.inv_min_radius[m] = law.inv_min_radius;
+  }
+}
+
+// Stage 1's touching contact m of a batch (pair k): what the law reads of it,
+// into the columns. With one_law (every candidate pair shares SphereWorld::laws[0]) the law's
+// columns are left as set_mindlin_law set them.
+void gather_mindlin(const SphereWorld& w, std::size_t m, std::size_t k, const Vec3& d, double dist,
+                    double overlap, bool one_law, MindlinColumns& b) {
+  const PairContact& p = w.pairs[k];
+  const int i = p.i, j = p.j;
+  for (int a = 0; a < 3; ++a) {
+    b.d[a][m] = d[a];
+    b.vi[a][m] = w.v(a, i);
+    b.wi[a][m] = w.w(a, i);
+    b.vj[a][m] = w.v(a, j);
+    b.wj[a][m] = w.w(a, j);
+    b.dv_end[a][m] = w.v_end(a, i) - w.v_end(a, j);
+    b.spring[a][m] = p.spring[a];
+  }
+  b.dist[m] = dist;
+  b.overlap[m] = overlap;
+  b.ri[m] = w.radius[i];
+  b.rj[m] = w.radius[j];
+  b.viscous[m] = p.viscous;
+  if (!one_law) set_mindlin_law(w.laws[p.law], m, m + 1, b);
+}
+
+// Stage 3: the batch's new history, its largest overlap ratio, and its sums in list order.
+// pair[m]: the m-th touching contact's index in the pair list. The list is sorted by i: sphere
+// i's force, torque and contact output are summed in registers over its run of pairs and stored
+// once. The spheres' contact force output is their force total (compute_forces).
+void scatter_mindlin(SphereWorld& w, const std::size_t* pair, std::size_t t,
+                     const MindlinColumns& b) {
+  double max_ratio = w.max_overlap_ratio;
+  const auto col = [](const double(&a)[3][kColumn], std::size_t m) {
+    return Vec3(a[0][m], a[1][m], a[2][m]);
+  };
+  double dissipated = w.dissipated;
+  std::size_t m = 0;
+  while (m < t) {
+    const int i = w.pairs[pair[m]].i, bi = w.body[i];
+    Vec3 fi = w.force.col(i), ti = w.torque.col(i), fni = w.contacts.normal_force.col(bi);
+    for (; m < t && w.pairs[pair[m]].i == i; ++m) {
+      PairContact& p = w.pairs[pair[m]];
+      p.spring = col(b.new_spring, m);
+      p.viscous = b.new_viscous[m];
+      max_ratio = std::max(max_ratio, b.ratio[m]);
+      const int j = p.j, bj = w.body[j];
+      const Vec3 f = col(b.force, m), fn = col(b.normal_force, m);
+      fi += f;
+      w.force.col(j) -= f;
+      ti += col(b.torque_i, m);
+      w.torque.col(j) -= col(b.torque_j, m);
+      dissipated += b.dissipated[m];
+      fni += fn;
+      w.contacts.normal_force.col(bj) -= fn;
+    }
+    w.force.col(i) = fi;
+    w.torque.col(i) = ti;
+    w.contacts.normal_force.col(bi) = fni;
+  }
+  w.dissipated = dissipated;
+  w.max_overlap_ratio = max_ratio;
+  w.contact_updates += static_cast<long>(t);
+}
+
+void mindlin_pair_forces(SphereWorld& w, double dt) {
+  std::size_t pair[kBatch];
+  MindlinColumns columns;
+  // A packing of one size and material has one law: its columns are set once, not per contact.
+  const bool one_law = w.laws.size() == 1;
+  if (one_law) set_mindlin_law(w.laws[0], 0, kBatch, columns);
+  const std::size_t np = w.pairs.size();
+  for (std::size_t k0 = 0; k0 < np; k0 += kBatch) {
+    const std::size_t t = stage_distances(
+        w, k0, std::min(np, k0 + kBatch),
+        [&](std::size_t m, std::size_t k, const Vec3& d, double dist, double overlap) {
+          pair[m] = k;
+          gather_mindlin(w, m, k, d, dist, overlap, one_law, columns);
+        });
+    mindlin_columns(columns, t, dt);
+    scatter_mindlin(w, pair, t, columns);
   }
 }
 
@@ -354,13 +626,13 @@ void compute_forces(SphereWorld& w, double dt) {
               ? PairLawKind::linear
               : (w.law.tangential ? PairLawKind::hertz_mindlin : PairLawKind::hertz)) {
     case PairLawKind::hertz_mindlin:
-      pair_forces<PairLawKind::hertz_mindlin>(w, dt);
+      mindlin_pair_forces(w, dt);
       break;
     case PairLawKind::hertz:
-      pair_forces<PairLawKind::hertz>(w, dt);
+      pair_forces_each<PairLawKind::hertz>(w, dt);
       break;
     case PairLawKind::linear:
-      pair_forces<PairLawKind::linear>(w, dt);
+      pair_forces_each<PairLawKind::linear>(w, dt);
       break;
   }
   wall_forces(w, dt);
