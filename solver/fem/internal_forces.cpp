@@ -1,9 +1,9 @@
 // The element loop of the deformable bodies (add_internal_forces, fem/tet_elements.hpp): internal
 // forces, strain energy and viscous forces, element batch by element batch, in target clones.
 //
-// This file alone is compiled with -ffp-contract=fast (solver/fem/CMakeLists.txt): the strict
-// -std=c++20 turns contraction off, so without it the clone for a target with FMA would issue
-// none. Contraction changes each element's forces by round-off only (a fused a·b + c rounds
+// This file is compiled with -ffp-contract=fast stated (solver/fem/CMakeLists.txt; GCC's C++
+// default already, -std=c++20 included: only ISO C modes turn it off), so the clones for targets
+// with FMA fuse multiply-adds. Contraction changes each element's forces by round-off only (a fused a·b + c rounds
 // once where a·b then + c round twice); TetElements.BatchedLoopEqualsTheOneElementKernel holds
 // the loop to the one-element kernel at that level.
 #include <algorithm>
