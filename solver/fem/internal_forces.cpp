@@ -3,9 +3,10 @@
 //
 // This file is compiled with -ffp-contract=fast stated (solver/fem/CMakeLists.txt; GCC's C++
 // default already, -std=c++20 included: only ISO C modes turn it off), so the clones for targets
-// with FMA fuse multiply-adds. Contraction changes each element's forces by round-off only (a fused a·b + c rounds
-// once where a·b then + c round twice); TetElements.BatchedLoopEqualsTheOneElementKernel holds
-// the loop to the one-element kernel at that level.
+// with FMA fuse multiply-adds. Contraction changes each element's forces by round-off only (a fused
+// a·b + c rounds once where a·b then + c round twice);
+// TetElements.BatchedLoopEqualsTheOneElementKernel holds the loop to the one-element kernel at that
+// level.
 #include <algorithm>
 #include <cmath>
 
