@@ -138,15 +138,18 @@ PairLaw pair_law(const SphereWorld& w, int i, int j) {
 }
 
 void rebuild_pairs(SphereWorld& world) {
-  std::vector<PairContact> old = std::move(world.pairs);
+  const std::vector<PairContact> old = std::move(world.pairs);
+  const PairHistory old_history = std::move(world.history);
   world.pairs = neighbour_pairs(world.x, world.radius, world.fixed, world.skin);
+  world.history.resize(world.pairs.size());
   // Carry the tangential history across (both lists sorted by (i, j)).
-  auto it = old.begin();
-  for (PairContact& p : world.pairs) {
-    while (it != old.end() && std::tie(it->i, it->j) < std::tie(p.i, p.j)) ++it;
-    if (it != old.end() && it->i == p.i && it->j == p.j) {
-      p.spring = it->spring;
-      p.viscous = it->viscous;
+  std::size_t o = 0;
+  for (std::size_t k = 0; k < world.pairs.size(); ++k) {
+    const PairContact& p = world.pairs[k];
+    while (o < old.size() && std::tie(old[o].i, old[o].j) < std::tie(p.i, p.j)) ++o;
+    if (o < old.size() && old[o].i == p.i && old[o].j == p.j) {
+      for (int a = 0; a < 3; ++a) world.history.spring[a][k] = old_history.spring[a][o];
+      world.history.viscous[k] = old_history.viscous[o];
     }
   }
   // One entry per distinct (materials, radii, masses as the law sees them), in order of first use.
@@ -175,16 +178,17 @@ enum class PairLawKind { hertz_mindlin, hertz, linear };
 // 0). Its gap is output only where it would raise a body's largest overlap (the gap reach − |d|
 // exceeds s where |d|² < (reach − s)²): the root is taken for those alone. Its history is
 // cleared only where it holds something: a candidate that stays apart costs no store.
-void apart(SphereWorld& w, PairContact& p, int bi, int bj, double d2, double reach, double dist) {
+void apart(SphereWorld& w, std::size_t k, int bi, int bj, double d2, double reach, double dist) {
   std::vector<double>& touch = w.contacts.overlap;
   if (const double s = std::min(touch[bi], touch[bj]); dist > 0 || d2 < (reach - s) * (reach - s)) {
     const double gap = reach - (dist > 0 ? dist : std::sqrt(d2));
     touch[bi] = std::max(touch[bi], gap);
     touch[bj] = std::max(touch[bj], gap);
   }
-  if (p.viscous != 0 || p.spring != Vec3::Zero()) {
-    p.spring.setZero();
-    p.viscous = 0;
+  PairHistory& h = w.history;
+  if (h.viscous[k] != 0 || h.spring[0][k] != 0 || h.spring[1][k] != 0 || h.spring[2][k] != 0) {
+    for (std::vector<double>& c : h.spring) c[k] = 0;
+    h.viscous[k] = 0;
   }
 }
 
@@ -204,16 +208,18 @@ void pair_forces_each(SphereWorld& w, double dt) {
     const double ri = w.radius[i];
     Vec3 fi = w.force.col(i), ti = w.torque.col(i), fni = w.contacts.normal_force.col(bi);
     for (; k < np && w.pairs[k].i == i; ++k) {
-      PairContact& p = w.pairs[k];
+      const PairContact& p = w.pairs[k];
       const int j = p.j, bj = w.body[j];
       const Vec3 d = xi - w.x.col(j);
       const double reach = ri + w.radius[j], d2 = d.squaredNorm();
       const double dist = d2 < reach * reach ? std::sqrt(d2) : 0.0;  // apart: no root yet
       const double overlap = reach - dist;
       if (dist == 0 || overlap <= 0) {
-        apart(w, p, bi, bj, d2, reach, dist);
+        apart(w, k, bi, bj, d2, reach, dist);
         continue;
       }
+      Vec3 spring = w.history.spring_of(k);
+      double& viscous = w.history.viscous[k];
       const PairLaw& law = w.laws[p.law];
       const Vec3 n = d * (1.0 / dist);  // one quotient, not three
       w.max_overlap_ratio = std::max(w.max_overlap_ratio, overlap * law.inv_min_radius);
@@ -229,12 +235,13 @@ void pair_forces_each(SphereWorld& w, double dt) {
                                 .arm2 = arm2,
                                 .radius_eff = law.hertz.radius_eff,
                                 .mass_eff = law.hertz.mass_eff};
-        c = contact_force(w, g, w.pair[w.material[i] * nm + w.material[j]], v_rel, rate_end,
-                          p.spring, p.viscous, dt);
+        c = contact_force(w, g, w.pair[w.material[i] * nm + w.material[j]], v_rel, rate_end, spring,
+                          viscous, dt);
       } else {
         c = hertz_contact<kind == PairLawKind::hertz_mindlin>(law.hertz, n, overlap, v_rel,
-                                                              rate_end, p.spring, p.viscous, dt);
+                                                              rate_end, spring, viscous, dt);
       }
+      for (int a = 0; a < 3; ++a) w.history.spring[a][k] = spring[a];
       fi += c.force;
       w.force.col(j) -= c.force;
       ti += arm1.cross(c.force);
@@ -261,13 +268,16 @@ void pair_forces_each(SphereWorld& w, double dt) {
 //   1. distances (stage_distances): the apart pairs' gap output and history; what the law reads
 //      of the touching ones gathered into columns, one array per component (gather_mindlin);
 //   2. the law over the columns, vectorised by the compiler: 8 contacts per instruction with
-//      AVX-512 (mindlin_columns);
-//   3. the contacts' history back, and the sums in list order (scatter_mindlin).
+//      AVX-512 (mindlin_columns); it reads and writes the history (PairHistory, columns of the
+//      list's own) in place where every pair of the batch touches, so that a dense packing's
+//      history is neither gathered nor written back (4 stores per contact fewer: the core retires
+//      one store per cycle, and the gather and write-back were half the loop's time);
+//   3. the sums in list order (scatter_mindlin).
 // Every contact takes the same operations on the same values as when computed whole, and the sums
 // (force, torque, contact output, dissipated energy) are added in the order of the list, so the
 // results are the same bit for bit; maxima (the overlap output, the largest overlap ratio) do not
-// depend on order. BM_Packing10k mindlin: 1.50x the loop one contact after another
-// (docs/performance.md).
+// depend on order. BM_Packing10k mindlin: 1.50x the loop one contact after another, and 1.08x
+// more with the history in place (docs/performance.md).
 constexpr std::size_t kBatch = 32;  // pairs per batch: its columns stay in L1 (~16 kB)
 
 // Stage 1: pairs [k0, k1). Apart pairs: their gap output and cleared history (apart). Touching
@@ -278,14 +288,14 @@ std::size_t stage_distances(SphereWorld& w, std::size_t k0, std::size_t k1, Touc
   std::vector<double>& touch = w.contacts.overlap;
   std::size_t t = 0;
   for (std::size_t k = k0; k < k1; ++k) {
-    PairContact& p = w.pairs[k];
+    const PairContact& p = w.pairs[k];
     const int i = p.i, j = p.j, bi = w.body[i], bj = w.body[j];
     const Vec3 d = w.x.col(i) - w.x.col(j);
     const double reach = w.radius[i] + w.radius[j], d2 = d.squaredNorm();
     const double dist = d2 < reach * reach ? std::sqrt(d2) : 0.0;  // apart: no root yet
     const double overlap = reach - dist;
     if (dist == 0 || overlap <= 0) {
-      apart(w, p, bi, bj, d2, reach, dist);
+      apart(w, k, bi, bj, d2, reach, dist);
       continue;
     }
     touch[bi] = std::max(touch[bi], overlap);
@@ -308,16 +318,14 @@ struct MindlinColumns {
   double dist[kColumn], overlap[kColumn];                                 // |d|, reach − |d|, m
   double ri[kColumn], rj[kColumn];                                        // radii, m
   double vi[3][kColumn], wi[3][kColumn], vj[3][kColumn], wj[3][kColumn];  // m/s, rad/s
-  double dv_end[3][kColumn];                    // v_end,i − v_end,j, m/s
-  double spring[3][kColumn], viscous[kColumn];  // history (last step's spring, unrotated), N
+  double dv_end[3][kColumn];  // v_end,i − v_end,j, m/s
   double k[kColumn], damping[kColumn], shear[kColumn], shear_damping[kColumn], friction[kColumn];
   double inv_min_radius[kColumn];
   // Out.
-  double force[3][kColumn], normal_force[3][kColumn];   // on sphere i, N
-  double torque_i[3][kColumn], torque_j[3][kColumn];    // arm1 × force, arm2 × force, N·m
-  double dissipated[kColumn];                           // J
-  double ratio[kColumn];                                // overlap / smaller radius
-  double new_spring[3][kColumn], new_viscous[kColumn];  // history, N
+  double force[3][kColumn], normal_force[3][kColumn];  // on sphere i, N
+  double torque_i[3][kColumn], torque_j[3][kColumn];   // arm1 × force, arm2 × force, N·m
+  double dissipated[kColumn];                          // J
+  double ratio[kColumn];                               // overlap / smaller radius
 };
 
 inline double dot3(double ax, double ay, double az, double bx, double by, double bz) {
@@ -331,7 +339,9 @@ inline double dot3(double ax, double ay, double az, double bx, double by, double
 // any (this file is compiled without contraction), so all three give the same bits.
 [[gnu::target_clones("arch=x86-64-v4", "arch=x86-64-v3", "default")]]
 #endif
-void mindlin_columns(MindlinColumns& b, std::size_t t, double dt) {
+void mindlin_columns(MindlinColumns& __restrict b, std::size_t t, double dt,
+                     double* __restrict sx, double* __restrict sy, double* __restrict sz,
+                     double* __restrict viscous) {
   // hertz_contact<true> written out in scalars over the columns. Each line is the operation the
   // Eigen expression it replaces performs, in the same order (a 3-vector's dot product and squared
   // norm are (x x' + y y') + z z', as Eigen's two-lane reduction sums them; a cross product is
@@ -339,7 +349,8 @@ void mindlin_columns(MindlinColumns& b, std::size_t t, double dt) {
   // and both sides of the Coulomb test are computed and one chosen, so every contact gets the bits
   // it gets computed whole. The formulas: contact::hertz_normal,
   // contact::rotate_into_tangent_plane, contact::tangential_spring (Hertz–Mindlin:
-  // contact::hertz_mindlin) and outcome().
+  // contact::hertz_mindlin) and outcome(). The history (sx, sy, sz: the spring, N; viscous, N)
+  // is read and written in place: contact m's last step's on entry, this step's on return.
   for (std::size_t m = 0; m < t; ++m) {
     // The normal, one quotient (n = d · (1/|d|)).
     const double inv = 1.0 / b.dist[m];
@@ -368,19 +379,19 @@ void mindlin_columns(MindlinColumns& b, std::size_t t, double dt) {
     const double sum = elastic + damping;
     const double fn = 0.0 < sum ? sum : 0.0;  // std::max(0.0, sum)
     // Last step's spring rotated into the tangent plane (contact::rotate_into_tangent_plane).
-    const double sx0 = b.spring[0][m], sy0 = b.spring[1][m], sz0 = b.spring[2][m];
+    const double sx0 = sx[m], sy0 = sy[m], sz0 = sz[m];
     const double sn = dot3(sx0, sy0, sz0, nx, ny, nz);
-    double sx = sx0 - sn * nx, sy = sy0 - sn * ny, sz = sz0 - sn * nz;
-    const double ss = dot3(sx, sy, sz, sx, sy, sz);
+    double rx = sx0 - sn * nx, ry = sy0 - sn * ny, rz = sz0 - sn * nz;
+    const double ss = dot3(rx, ry, rz, rx, ry, rz);
     const double scale = std::sqrt(dot3(sx0, sy0, sz0, sx0, sy0, sz0) / ss);
-    sx = ss > 0 ? sx * scale : sx;
-    sy = ss > 0 ? sy * scale : sy;
-    sz = ss > 0 ? sz * scale : sz;
+    rx = ss > 0 ? rx * scale : rx;
+    ry = ss > 0 ? ry * scale : ry;
+    rz = ss > 0 ? rz * scale : rz;
     // The tangential spring with its Coulomb cap (contact::tangential_spring).
     const double slx = vx - vn * nx, sly = vy - vn * ny, slz = vz - vn * nz;
     const double kt = b.shear[m] * sqrt_d, ct = b.shear_damping[m] * fourth_d;
     const double kdt = kt * dt, mct = -ct;
-    const double trx = sx - kdt * slx, try_ = sy - kdt * sly, trz = sz - kdt * slz;
+    const double trx = rx - kdt * slx, try_ = ry - kdt * sly, trz = rz - kdt * slz;
     const double fdx = mct * slx, fdy = mct * sly, fdz = mct * slz;
     const double tfx = trx + fdx, tfy = try_ + fdy, tfz = trz + fdz;
     const double cap = b.friction[m] * fn;
@@ -404,11 +415,11 @@ void mindlin_columns(MindlinColumns& b, std::size_t t, double dt) {
     // The contact's outcome (outcome()): total force, normal part, work of the normal dashpot.
     const double nfx = fn * nx, nfy = fn * ny, nfz = fn * nz;
     const double viscous_now = fn - elastic;
-    b.dissipated[m] = 0.5 * (b.viscous[m] + viscous_now) * rate * dt + tangential_work;
-    b.new_viscous[m] = viscous_now;
-    b.new_spring[0][m] = spx;
-    b.new_spring[1][m] = spy;
-    b.new_spring[2][m] = spz;
+    b.dissipated[m] = 0.5 * (viscous[m] + viscous_now) * rate * dt + tangential_work;
+    viscous[m] = viscous_now;
+    sx[m] = spx;
+    sy[m] = spy;
+    sz[m] = spz;
     const double fx = nfx + ftx, fy = nfy + fty, fz = nfz + ftz;
     b.normal_force[0][m] = nfx;
     b.normal_force[1][m] = nfy;
@@ -451,17 +462,15 @@ void gather_mindlin(const SphereWorld& w, std::size_t m, std::size_t k, const Ve
     b.vj[a][m] = w.v(a, j);
     b.wj[a][m] = w.w(a, j);
     b.dv_end[a][m] = w.v_end(a, i) - w.v_end(a, j);
-    b.spring[a][m] = p.spring[a];
   }
   b.dist[m] = dist;
   b.overlap[m] = overlap;
   b.ri[m] = w.radius[i];
   b.rj[m] = w.radius[j];
-  b.viscous[m] = p.viscous;
   if (!one_law) set_mindlin_law(w.laws[p.law], m, m + 1, b);
 }
 
-// Stage 3: the batch's new history, its largest overlap ratio, and its sums in list order.
+// Stage 3: the batch's largest overlap ratio, and its sums in list order.
 // pair[m]: the m-th touching contact's index in the pair list. The list is sorted by i: sphere
 // i's force, torque and contact output are summed in registers over its run of pairs and stored
 // once. The spheres' contact force output is their force total (compute_forces).
@@ -477,9 +486,7 @@ void scatter_mindlin(SphereWorld& w, const std::size_t* pair, std::size_t t,
     const int i = w.pairs[pair[m]].i, bi = w.body[i];
     Vec3 fi = w.force.col(i), ti = w.torque.col(i), fni = w.contacts.normal_force.col(bi);
     for (; m < t && w.pairs[pair[m]].i == i; ++m) {
-      PairContact& p = w.pairs[pair[m]];
-      p.spring = col(b.new_spring, m);
-      p.viscous = b.new_viscous[m];
+      const PairContact& p = w.pairs[pair[m]];
       max_ratio = std::max(max_ratio, b.ratio[m]);
       const int j = p.j, bj = w.body[j];
       const Vec3 f = col(b.force, m), fn = col(b.normal_force, m);
@@ -503,18 +510,35 @@ void scatter_mindlin(SphereWorld& w, const std::size_t* pair, std::size_t t,
 void mindlin_pair_forces(SphereWorld& w, double dt) {
   std::size_t pair[kBatch];
   MindlinColumns columns;
+  double history[4][kColumn];  // a batch's history, where some of its pairs are apart
   // A packing of one size and material has one law: its columns are set once, not per contact.
   const bool one_law = w.laws.size() == 1;
   if (one_law) set_mindlin_law(w.laws[0], 0, kBatch, columns);
+  PairHistory& h = w.history;
   const std::size_t np = w.pairs.size();
   for (std::size_t k0 = 0; k0 < np; k0 += kBatch) {
+    const std::size_t k1 = std::min(np, k0 + kBatch);
     const std::size_t t = stage_distances(
-        w, k0, std::min(np, k0 + kBatch),
-        [&](std::size_t m, std::size_t k, const Vec3& d, double dist, double overlap) {
+        w, k0, k1, [&](std::size_t m, std::size_t k, const Vec3& d, double dist, double overlap) {
           pair[m] = k;
           gather_mindlin(w, m, k, d, dist, overlap, one_law, columns);
         });
-    mindlin_columns(columns, t, dt);
+    if (t == k1 - k0) {
+      // Every pair of the batch touches (a dense packing's usual batch): contact m is pair
+      // k0 + m, and the law reads and writes its history in the list's columns.
+      mindlin_columns(columns, t, dt, &h.spring[0][k0], &h.spring[1][k0], &h.spring[2][k0],
+                      &h.viscous[k0]);
+    } else {
+      for (std::size_t m = 0; m < t; ++m) {
+        for (int a = 0; a < 3; ++a) history[a][m] = h.spring[a][pair[m]];
+        history[3][m] = h.viscous[pair[m]];
+      }
+      mindlin_columns(columns, t, dt, history[0], history[1], history[2], history[3]);
+      for (std::size_t m = 0; m < t; ++m) {
+        for (int a = 0; a < 3; ++a) h.spring[a][pair[m]] = history[a][m];
+        h.viscous[pair[m]] = history[3][m];
+      }
+    }
     scatter_mindlin(w, pair, t, columns);
   }
 }
@@ -652,7 +676,7 @@ double contact_energy(const SphereWorld& w) {
     const double overlap = w.radius[p.i] + w.radius[p.j] - dist;
     if (overlap <= 0 || dist == 0) continue;
     e += stored_energy(w, w.laws[p.law].hertz, w.pair[w.material[p.i] * nm + w.material[p.j]],
-                       overlap, p.spring);
+                       overlap, w.history.spring_of(k));
   }
   const int n = w.size();
   for (std::size_t k = 0; k < w.walls.size(); ++k) {
@@ -763,9 +787,10 @@ std::size_t state_bytes(const SphereWorld& world) {
          doubles(world.x_initial) + held(world.radius) + held(world.mass) + held(world.inertia) +
          held(world.inv_mass) + held(world.inv_inertia) + held(world.material) + held(world.body) +
          held(world.fixed) + held(world.materials) + held(world.pair) + held(world.walls) +
-         held(world.pairs) + held(world.laws) + held(world.wall_contacts) +
-         doubles(world.contacts.force) + doubles(world.contacts.normal_force) +
-         held(world.contacts.overlap);
+         held(world.pairs) + held(world.history.spring[0]) + held(world.history.spring[1]) +
+         held(world.history.spring[2]) + held(world.history.viscous) + held(world.laws) +
+         held(world.wall_contacts) + doubles(world.contacts.force) +
+         doubles(world.contacts.normal_force) + held(world.contacts.overlap);
 }
 
 }  // namespace asperity::dem

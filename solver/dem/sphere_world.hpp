@@ -39,12 +39,23 @@ struct LawDef {
   std::optional<double> restitution;  // overrides the pair's
 };
 
-// One sphere–sphere pair of the neighbour list, with its tangential history (zero while apart).
+// One sphere–sphere pair of the neighbour list; its history is in PairHistory.
 struct PairContact {
   int i = 0, j = 0;  // i < j
   int law = 0;       // its constants: SphereWorld::laws[law]
-  Vec3 spring = Vec3::Zero();
-  double viscous = 0;  // last non-elastic normal force (dashpot, clipping), N
+};
+
+// The history of the candidate pairs (zero while apart), one column per component, in the order
+// of SphereWorld::pairs: the Hertz–Mindlin loop reads and writes a batch of it in place.
+struct PairHistory {
+  std::vector<double> spring[3];  // tangential spring, N
+  std::vector<double> viscous;    // last non-elastic normal force (dashpot, clipping), N
+
+  Vec3 spring_of(std::size_t k) const { return {spring[0][k], spring[1][k], spring[2][k]}; }
+  void resize(std::size_t n) {
+    for (std::vector<double>& c : spring) c.assign(n, 0.0);
+    viscous.assign(n, 0.0);
+  }
 };
 
 // The constants of a candidate pair, set when the neighbour list is built: the Hertz(–Mindlin)
@@ -93,6 +104,7 @@ struct SphereWorld {
   // Broad phase: Verlet neighbour list, rebuilt when a sphere moved more than skin/2.
   double skin = 0;
   std::vector<PairContact> pairs;
+  PairHistory history;        // of pairs[k], at k
   std::vector<PairLaw> laws;  // the distinct constants of the candidate pairs (PairContact::law)
   Eigen::Matrix3Xd x_at_build;
   long rebuilds = 0;
