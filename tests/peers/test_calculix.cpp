@@ -453,9 +453,11 @@ std::vector<double> column(const std::vector<std::map<std::string, std::string>>
 }
 
 // The sphere: CalculiX's estimates of the filtered peak and the duration (% from Hertz) per a/R
-// and triple of levels at T_H/100. Which orders are trusted: 8.4 (a/R = 0.08's peak, 0.107's
-// duration over s = 2, √2, 1: a jump, then a stall) and changes that alternate or grow (the
-// durations of 0.107 over s = √2, 1, 1/√2 and of 0.15) are not.
+// and triple of levels at T_H/100. Which orders are trusted: 6.4 and 8.4 (a/R = 0.08's peak,
+// 0.107's duration over s = 2, √2, 1: a jump, then a stall) and changes that grow (the durations
+// of 0.107 over s = √2, 1, 1/√2) are not. 0.08 and 0.15 were rerun by the gate with the contact's
+// start fix (2026-12-07): 0.15's durations now fall, 0.89 then 0.65 point, order 0.89, trusted
+// (before: 0.73 then 0.85, growing).
 TEST(CalculiXRecordedLevels, SphereEstimatesRefuseTheStallsAndTheGrowingChanges) {
   const auto rows = read_rows(kRecorded / "levels.csv");
   struct Triple {
@@ -466,7 +468,7 @@ TEST(CalculiXRecordedLevels, SphereEstimatesRefuseTheStallsAndTheGrowingChanges)
   for (const Triple& t : {Triple{"0.080", {"1.4142", "1.0000", "0.7071"}, false, true},
                           Triple{"0.107", {"2.0000", "1.4142", "1.0000"}, true, false},
                           Triple{"0.107", {"1.4142", "1.0000", "0.7071"}, true, false},
-                          Triple{"0.150", {"1.4142", "1.0000", "0.7071"}, true, false}}) {
+                          Triple{"0.150", {"1.4142", "1.0000", "0.7071"}, true, true}}) {
     std::vector<double> peak, duration;
     for (const std::string& s : t.s) {
       const std::vector<std::pair<std::string, std::string>> m = {
