@@ -5,7 +5,6 @@
 #include <algorithm>
 #include <array>
 #include <cmath>
-#include <limits>
 #include <numbers>
 #include <sstream>
 #include <vector>
@@ -14,7 +13,6 @@
 #include "solver/geometry/geodesic_sphere.hpp"
 #include "solver/geometry/mass_properties.hpp"
 #include "solver/geometry/splitmix64.hpp"
-#include "solver/io/json_file.hpp"
 
 namespace asperity::geometry {
 namespace {
@@ -65,18 +63,6 @@ std::string particle_def_problem(const ParticleDef& d) {
   else if (d.faces < 20 || d.faces > 2'000'000)
     s << "faces must lie in [20, 2000000] (got " << d.faces << ")";
   return s.str();
-}
-
-ParticleDef read_particle_def(const io::JsonReader& r) {
-  ParticleDef d;
-  d.seed = static_cast<std::uint64_t>(r.integer("seed", 0, std::numeric_limits<long long>::max()));
-  d.size = r.number_or("size", d.size);
-  d.elongation = r.number_or("elongation", d.elongation);
-  d.flatness = r.number_or("flatness", d.flatness);
-  d.angularity = r.number_or("angularity", d.angularity);
-  d.roughness = r.number_or("roughness", d.roughness);
-  if (r.has("faces")) d.faces = static_cast<long>(r.integer("faces", 20, 2'000'000));
-  return d;
 }
 
 SurfaceMesh random_particle(const ParticleDef& def) {
