@@ -199,6 +199,7 @@ void apart(SphereWorld& w, std::size_t k, int bi, int bj, double d2, double reac
 // per pair). The spheres' contact force output is their force total (compute_forces).
 template <PairLawKind kind>
 void pair_forces_each(SphereWorld& w, double dt) {
+  static_assert(kind != PairLawKind::hertz_mindlin, "Hertz–Mindlin is mindlin_pair_forces'");
   const int nm = static_cast<int>(w.materials.size());
   const std::size_t np = w.pairs.size();
   std::vector<double>& touch = w.contacts.overlap;
@@ -238,8 +239,7 @@ void pair_forces_each(SphereWorld& w, double dt) {
         c = contact_force(w, g, w.pair[w.material[i] * nm + w.material[j]], v_rel, rate_end, spring,
                           viscous, dt);
       } else {
-        c = hertz_contact<kind == PairLawKind::hertz_mindlin>(law.hertz, n, overlap, v_rel,
-                                                              rate_end, spring, viscous, dt);
+        c = hertz_contact<false>(law.hertz, n, overlap, v_rel, rate_end, spring, viscous, dt);
       }
       for (int a = 0; a < 3; ++a) w.history.spring[a][k] = spring[a];
       fi += c.force;
