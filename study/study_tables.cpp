@@ -12,6 +12,7 @@ StudyTables write_tables(const StudyDef& def, const fs::path& dir, const StudyOu
   const tables::StudyCases cases = tables::load_study_cases(def, dir);
   tables::write_cases_table(cases, dir);
   tables::write_references_table(cases, dir);
+  tables::write_unreferenced_table(cases, dir);
   tables::write_discretization_table(cases, dir);
   tables::write_geometry_tables(tables::geometry_term(tables::converged_answers(cases)), dir);
   const std::vector<tables::Classification> classes = tables::classify_resolutions(cases);

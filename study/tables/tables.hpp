@@ -49,6 +49,10 @@ void write_particle_classes_table(const std::vector<Classification>& rows,
 // term empty: the geometry is the particle's).
 void write_references_table(const StudyCases& s, const std::filesystem::path& dir);
 
+// unreferenced.csv: per particle and placement with no reference, why (the cases its reference
+// needed that are not usable, with their status and the run's message).
+void write_unreferenced_table(const StudyCases& s, const std::filesystem::path& dir);
+
 // The geometry term (docs/study.md, "The geometry term"): for a study refining two or more
 // resolutions N, the converged answer at each N (the Richardson limit of its refined levels)
 // isolates the particle's shape from the element size; along N those answers form a second

@@ -100,14 +100,16 @@ r = run("report", study, "--out", report)
 check("report exits 0", r.returncode == 0, r.stderr)
 for name in ["report.md", "report.html", "cases.csv", "references.csv", "classification.csv", "particle_classes.csv", "cpu_fit.csv",
              "candidates.csv", "guidelines.csv", "discretization.csv", "answer.csv", "few_hundred.csv",
-             "cpu_vs_resolution.png", "accuracy_vs_cost.png"]:
+             "unreferenced.csv", "cpu_vs_resolution.png", "accuracy_vs_cost.png"]:
     check(f"{name} present", os.path.isfile(os.path.join(report, name)) and os.path.getsize(os.path.join(report, name)) > 0)
 tables = {}
 for name in os.listdir(report):
     if name.endswith(".csv"):
         with open(os.path.join(report, name), newline="") as f:
             rows = list(csv.DictReader(f))
-        check(f"{name} parses with rows", len(rows) > 0 and all(None not in r for r in rows))
+        # unreferenced.csv is the header alone when every particle has its reference.
+        check(f"{name} parses with rows", (len(rows) > 0 or name == "unreferenced.csv") and
+              all(None not in r for r in rows))
         tables[name] = rows
 pngs = [n for n in os.listdir(report) if n.endswith(".png")]
 check("a force chart per particle", sum(n.startswith("force_") for n in pngs) == 2, pngs)
@@ -337,6 +339,18 @@ check("geometry_unmeasured: only a finest reference with no geometry term anywhe
       not study_report.geometry_unmeasured([{"reference": "finest", "geometry_from": ""},
                                             {"reference": "finest", "geometry_from": "1000"}]) and
       not study_report.geometry_unmeasured([{"reference": "source", "geometry_from": ""}]), "")
+# unreferenced.csv: the header alone when every particle has its reference, and then the report says nothing.
+missing_refs = tables.get("unreferenced.csv", [])
+check("unreferenced.csv: a row exactly for each particle and placement with no reference",
+      len(missing_refs) + len(tables.get("references.csv", [])) == len(
+          {(r["particle"], r["placement"]) for r in tables.get("cases.csv", [])}), missing_refs)
+check("report.md names the particles with no reference exactly when there are some",
+      ("No reference for" in report_md) == bool(missing_refs), "")
+check("unreferenced_paragraph: counts, the rest and every reason",
+      study_report.unreferenced_paragraph([], 4) is None and
+      study_report.unreferenced_paragraph([{"particle": "a-o1", "placement": "lowest", "why": "L3 unstable: x"}], 4) ==
+      "No reference for 1 of 4 particle and placement pairs, left out of every error below (each median and p90 is "
+      "over the other 3): a-o1 (lowest): L3 unstable: x.", "")
 check("report.md says the geometry term is not measured exactly when no coarser resolution was refined",
       (report_md.count("its geometry term is not measured") == 2) == unmeasured and
       report_md.split("## The reference and its uncertainty")[1].count("| unknown: geometry not measured |") ==

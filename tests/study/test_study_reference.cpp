@@ -272,5 +272,30 @@ TEST(SourceReferenceTable, PatchCheckLeftOutWhereALevelOfItFailedAndNoReferenceW
   EXPECT_EQ(read_csv(dir / "references.csv").size(), 1u);  // the header alone
 }
 
+// A level of the reference that ended unstable (the run's own checks: an inverted element, energy
+// growth) takes its particle out of every error; unreferenced.csv names it, the level, the status
+// and the run's message, so a median "over the particles" is not silently over fewer of them.
+TEST(SourceReferenceTable, AnUnstableLevelLeavesItsParticleUnreferencedAndSaysWhy) {
+  const StudyDef def = source_def(false);
+  const fs::path dir = write_source_study(def, "unstable");
+  tables::write_unreferenced_table(tables::load_study_cases(def, dir), dir);
+  EXPECT_EQ(read_csv(dir / "unreferenced.csv").size(), 1u);  // every reference made: the header
+  const CaseKey finest{.particle = "p",
+                       .model = ModelKind::fem,
+                       .placement = Placement::lowest,
+                       .level = SourceReferenceOptions{}.levels,
+                       .source_patch = 1};
+  std::ofstream(case_dir(dir, finest) / "summary.json")
+      << R"({"status": "unstable", "message": "element 7 inverted"})";
+  const tables::StudyCases s = tables::load_study_cases(def, dir);
+  EXPECT_EQ(s.reference("p", Placement::lowest), nullptr);
+  tables::write_unreferenced_table(s, dir);
+  const auto t = read_csv(dir / "unreferenced.csv");
+  ASSERT_EQ(t.size(), 2u);
+  EXPECT_EQ(cell(t, 1, "particle"), "p");
+  EXPECT_EQ(cell(t, 1, "placement"), "lowest");
+  EXPECT_EQ(cell(t, 1, "why"), finest.dir_name() + " unstable: element 7 inverted");
+}
+
 }  // namespace
 }  // namespace asperity::study::study_reference_tests

@@ -717,6 +717,10 @@ def answer_section(doc, study, published):
             f"are the {len(definition['particles'])} particle-orientations ({len(definition['particles']) // k} "
             f"particles x {k}), so each error is a distribution over particles and orientations." if k else "")
     references = read_csv(os.path.join(study, "references.csv"))
+    missing = unreferenced_paragraph(read_unreferenced(study),
+                                     len(definition["particles"]) * len(definition.get("placements", [pl])))
+    if missing:
+        doc.p(missing)
     if geometry_unmeasured(references):
         doc.p(GEOMETRY_UNMEASURED)
     doc.p(f"To get within X % of {REFERENCE['name']}, placed by {pl}, use the cheapest model below; "
@@ -831,6 +835,23 @@ def source_reference_section(doc, references):
                "uncertainty (peak)", "uncertainty (duration)", "uncertainty (impulse)"], rows)
 
 
+def read_unreferenced(study):
+    """unreferenced.csv (asperity study): the particles with no reference and why; [] for a folder
+    written before the table existed."""
+    path = os.path.join(study, "unreferenced.csv")
+    return read_csv(path) if os.path.exists(path) else []
+
+
+def unreferenced_paragraph(rows, total):
+    """One paragraph naming each particle (and placement) the study could make no reference for, and why: they
+    are left out of every error, so every median and p90 is over the others."""
+    if not rows:
+        return None
+    listed = "; ".join(f"{r['particle']} ({r['placement']}): {r['why']}" for r in rows)
+    return (f"No reference for {len(rows)} of {total} particle and placement pairs, left out of every error below "
+            f"(each median and p90 is over the other {total - len(rows)}): {listed}.")
+
+
 def geometry_unmeasured(references):
     """True for a finest-resolution reference whose geometry term no particle measured (no coarser resolution
     refined): its uncertainty is the discretization term alone."""
@@ -850,13 +871,18 @@ GEOMETRY_UNMEASURED = (
     "particle (data/study/source.json, this study's twin: reports/study-source/).")
 
 
-def references_section(doc, references, growth, contact_factor=0):
+def references_section(doc, references, growth, contact_factor=0, missing=None):
     """The reference of each particle and the two terms of its uncertainty (references.csv); `growth` the refined
     levels' far-field grading (study.json), whose bias the uncertainty does not include; `contact_factor` their
-    contact.max_contact_factor (study.json refinement.max_contact_factor, 0: none)."""
-    if not references:
+    contact.max_contact_factor (study.json refinement.max_contact_factor, 0: none); `missing` the paragraph on the
+    particles with no reference (unreferenced_paragraph), or None."""
+    if not references and not missing:
         return
     doc.h(2, "The reference and its uncertainty")
+    if missing:
+        doc.p(missing)
+    if not references:
+        return
     if any(r.get("reference") == "source" for r in references):
         source_reference_section(doc, references)
         return
@@ -926,6 +952,11 @@ def main():
 
     for t in TABLES:
         write_markdown_table(os.path.join(a.study, t), os.path.join(a.out, t[:-4] + ".md"))
+    # unreferenced.csv: optional, a folder written before the table existed has none.
+    if os.path.exists(os.path.join(a.study, "unreferenced.csv")):
+        if os.path.abspath(a.study) != os.path.abspath(a.out):
+            shutil.copyfile(os.path.join(a.study, "unreferenced.csv"), os.path.join(a.out, "unreferenced.csv"))
+        write_markdown_table(os.path.join(a.study, "unreferenced.csv"), os.path.join(a.out, "unreferenced.md"))
     uncertainty = {}
     for g in guidelines:
         uncertainty.setdefault((g["placement"], g["metric"]), {})[g["statistic"]] = g["reference_uncertainty"]
@@ -941,14 +972,16 @@ def main():
                     "the limit of the fem refinement sequence (refined at the strike point, extrapolated as above) at "
                     "the finest resolution")
     references_section(doc, read_csv(os.path.join(a.study, "references.csv")), refinement.get("growth"),
-                       refinement.get("max_contact_factor") or 0)
+                       refinement.get("max_contact_factor") or 0,
+                       unreferenced_paragraph(read_unreferenced(a.study),
+                                              len(definition["particles"]) * len(definition.get("placements", []))))
     doc.p(f"{summary['particles']} particles x resolutions {summary['resolutions']} x models "
           f"{', '.join(summary['models'])} x placements {', '.join(summary['placements'])}: {summary['cases']} cases, "
           f"{summary['done']} done, {summary['failed']} failed. Each particle is launched straight down onto a fixed "
           "block under gravity. Errors are relative to the finest resolution of the same model (err) and to the "
           f"reference (err_fem): {reference_is}, same placement (docs/study.md). The sphere, rigid and sphere-local "
           "models strike a rigid block, as the fem does. "
-          "Tables: cases, references, classification, particle_classes, cpu_fit, candidates, guidelines, discretization, "
+          "Tables: cases, references, unreferenced, classification, particle_classes, cpu_fit, candidates, guidelines, discretization, "
           "answer, few_hundred, as CSV and as Markdown "
           "beside this file; every chart as PNG and SVG.")
 
