@@ -7,16 +7,37 @@
 // sphere's mass, radius and material, its approach speed, and the force to draw the contact at.
 // Writes OUT.json: "e_star" (the sphere against a rigid flat, Pa), the impact's "max_overlap",
 // "peak_force", "contact_duration" and "impulse" (§11.4), and at "force" Hertz's
-// "contact_radius" and "peak_pressure" (§4.2). Numbers in the shortest form that reads back to
-// the same double. Bad input: one line naming the file and the problem, exit 2.
+// "contact_radius", "peak_pressure", "max_shear_depth" and the "pressure_profile" p(r) (§4.2):
+// {"radius": [...], "pressure": [...]} at kProfilePoints radii evenly from 0 to a (the ends
+// included). Numbers in the shortest form that reads back to the same double. Bad input: one line
+// naming the file and the problem, exit 2.
 #include <limits>
 #include <string>
+#include <vector>
 
 #include "solver/contact/hertz_impact.hpp"
 #include "solver/core/material.hpp"
 #include "solver/io/atomic_file.hpp"
 #include "solver/io/csv.hpp"
 #include "solver/io/json_file.hpp"
+
+namespace {
+
+// The profile's radii: enough for a smooth curve at the picture's size.
+constexpr int kProfilePoints = 200;
+
+// Hertz's pressure at kProfilePoints radii from 0 to a: r_k = k (a / (n − 1)), the last a itself.
+asperity::io::Json pressure_profile(const asperity::contact::HertzContact& c) {
+  std::vector<double> r, p;
+  const double step = c.radius / (kProfilePoints - 1);
+  for (int k = 0; k < kProfilePoints; ++k) {
+    r.push_back(k == kProfilePoints - 1 ? c.radius : k * step);
+    p.push_back(asperity::contact::hertz_pressure(c, r.back()));
+  }
+  return {{"radius", r}, {"pressure", p}};
+}
+
+}  // namespace
 
 int main(int argc, char** argv) {
   return asperity::io::table_program(argc, argv, 2, "hertz_numbers IN.json OUT.json", [&] {
@@ -38,7 +59,9 @@ int main(int argc, char** argv) {
                       {"contact_duration", h.contact_duration},
                       {"impulse", h.impulse},
                       {"contact_radius", c.radius},
-                      {"peak_pressure", c.peak_pressure}};
+                      {"peak_pressure", c.peak_pressure},
+                      {"max_shear_depth", c.max_shear_depth},
+                      {"pressure_profile", pressure_profile(c)}};
     asperity::io::write_atomically(argv[2], out.dump(1) + "\n");
   });
 }

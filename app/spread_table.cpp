@@ -1,6 +1,6 @@
 // spread_table SAMPLES.csv SPREAD.csv: the median and spread of repeated measurements by group,
 // for the report writers that repeat a measurement and only format the result
-// (tools/report/perf_table.py, peer_table.py, schedule_estimate.py, tools/measure_scaling.py),
+// (tools/report/perf_table.py, peer_table.py, tools/measure_scaling.py),
 // computed here by the one quantile (solver/core/quantile.hpp, asperity::spread).
 //
 // SAMPLES.csv: key columns (any number, plain fields), then `value`, the last column: one row per

@@ -33,6 +33,14 @@ const char* model_name(ModelKind m) {
   return "?";
 }
 
+std::optional<ModelKind> model_of(std::string_view name) {
+  for (ModelKind m : {ModelKind::fem, ModelKind::rigid, ModelKind::rigid_penalty, ModelKind::sphere,
+                      ModelKind::sphere_local}) {
+    if (name == model_name(m)) return m;
+  }
+  return std::nullopt;
+}
+
 const char* reference_name(ReferenceKind r) {
   return r == ReferenceKind::source ? "source" : "finest";
 }
@@ -189,16 +197,8 @@ void read_models(const JsonReader& r, StudyDef& s) {
     for (std::size_t i = 0, n = list.require_array(); i < n; ++i) {
       const Json& v = list.at(i).value();
       const std::string m = v.is_string() ? v.get<std::string>() : "";
-      if (m == "fem")
-        s.models.push_back(ModelKind::fem);
-      else if (m == "rigid")
-        s.models.push_back(ModelKind::rigid);
-      else if (m == "rigid-penalty")
-        s.models.push_back(ModelKind::rigid_penalty);
-      else if (m == "sphere")
-        s.models.push_back(ModelKind::sphere);
-      else if (m == "sphere-local")
-        s.models.push_back(ModelKind::sphere_local);
+      if (const std::optional<ModelKind> kind = model_of(m))
+        s.models.push_back(*kind);
       else
         list.at(i).fail("",
                         "must be \"fem\", \"rigid\", \"rigid-penalty\", \"sphere\" or "

@@ -5,6 +5,7 @@
 #include <filesystem>
 #include <optional>
 #include <string>
+#include <string_view>
 #include <vector>
 
 #include <nlohmann/json.hpp>
@@ -39,6 +40,8 @@ const char* placement_name(Placement p);
 // volume-equivalent rigid sphere (same volume and mass, Hertz against the block).
 enum class ModelKind { fem, rigid, rigid_penalty, sphere, sphere_local };
 const char* model_name(ModelKind m);
+// The model a name spells (model_name's inverse); nullopt for any other name.
+std::optional<ModelKind> model_of(std::string_view name);
 // The two Hertz spheres (no mesh, no resolution): "sphere", of the reference mesh's volume, and
 // "sphere-local", of the equivalent radius √(R1 R2) at its lowest vertex with its mass.
 inline bool is_sphere(ModelKind m) {

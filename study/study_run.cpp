@@ -36,6 +36,7 @@
 #include "solver/run/run_scene.hpp"
 #include "solver/scene/scene.hpp"
 #include "solver/scene/write_scene.hpp"
+#include "study/case_weight.hpp"
 #include "study/source_reference.hpp"
 #include "study/study_meshes.hpp"
 
@@ -142,37 +143,6 @@ class Progress {
   double weight_ = 0, last_print_ = -1e9;
   std::chrono::steady_clock::time_point start_ = std::chrono::steady_clock::now();
 };
-
-// Relative cost of a case for scheduling (longest first) and the time-left estimate: the FEM/DEM
-// collision costs about N^1.4 (measured, docs/study.md); a rigid polyhedron has no element
-// forces; the sphere is a few thousand DEM steps.
-// A refined fem case's step falls with its size at the strike point: the surface triangles'
-// edge over the equivalent radius is about √(29/N) (N equilateral triangles on a sphere's area
-// × 1.2), so the case costs about that ratio more per step.
-double case_weight(const CaseKey& c) {
-  if (c.source_patch > 0) {
-    // As a refined case at 2000 triangles whose size halves per level from the median finest
-    // a/3 (a/R 0.065, docs/study.md "The source reference"): they run first.
-    const double size = 0.065 / 3 * std::pow(2.0, SourceReferenceOptions{}.levels - c.level);
-    return std::pow(20.0, 1.4) * std::sqrt(29.0 / 2000.0) / size;
-  }
-  const double n = std::pow(static_cast<double>(c.resolution) / 100.0, 1.4);
-  switch (c.model) {
-    case ModelKind::fem:
-      if (c.level > 0) {
-        const double edge = std::sqrt(29.0 / static_cast<double>(c.resolution));
-        return n * std::max(1.0, edge / c.relative_size);
-      }
-      return n;
-    case ModelKind::rigid:
-    case ModelKind::rigid_penalty:
-      return 0.5 * n;
-    case ModelKind::sphere:
-    case ModelKind::sphere_local:
-      return 0.01;
-  }
-  return 1;
-}
 
 fs::path mesh_dir(const fs::path& out, const std::string& particle, long faces) {
   return out / "meshes" / particle / std::to_string(faces);

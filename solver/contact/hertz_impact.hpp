@@ -1,6 +1,7 @@
 // Closed-form elastic Hertz impact (Johnson 1985, Contact Mechanics, §11.4): the analytic
-// reference the validation gates compare against; and Hertz's contact at a given force (§4.2),
-// which the report's picture of a deformable sphere draws (app/hertz_numbers).
+// reference the validation gates compare against; and Hertz's contact at a given force (§4.2):
+// its radius, pressure and deepest shear, which the report's picture of a deformable sphere draws
+// (app/hertz_numbers).
 #pragma once
 
 #include <cmath>
@@ -34,11 +35,14 @@ inline double hertz_contact_time(double mass_eff, double radius_eff, double youn
   return hertz_impact(mass_eff, radius_eff, young_eff, v).contact_duration;
 }
 
-// Hertz's contact under a normal force F (Johnson 1985, §4.2): the contact circle's radius and
-// the pressure at its centre, p(r) = p0 √(1 − r²/a²).
+// Hertz's contact under a normal force F (Johnson 1985, §4.2): the contact circle's radius, the
+// pressure at its centre, p(r) = p0 √(1 − r²/a²), and where the shear under it peaks.
 struct HertzContact {
   double radius = 0;         // a = (3 F R* / (4 E*))^{1/3}, m
   double peak_pressure = 0;  // p0 = 3 F / (2π a²), Pa
+  // The depth on the axis of the largest principal shear stress, τ1 = 0.31 p0 at z = 0.48 a, m
+  // (Johnson 1985, §4.2, at ν = 0.3: the depth moves a little with ν, which this leaves out).
+  double max_shear_depth = 0;
 };
 
 // F (N), R* (m), E* (Pa).
@@ -46,7 +50,15 @@ inline HertzContact hertz_contact(double force, double radius_eff, double young_
   HertzContact c;
   c.radius = std::pow(3.0 * force * radius_eff / (4.0 * young_eff), 1.0 / 3.0);
   c.peak_pressure = 3.0 * force / (2.0 * std::numbers::pi * c.radius * c.radius);
+  c.max_shear_depth = 0.48 * c.radius;
   return c;
+}
+
+// Hertz's pressure at a distance r (m) from the contact's centre, Pa: p0 √(1 − r²/a²) inside the
+// circle, 0 outside it.
+inline double hertz_pressure(const HertzContact& c, double r) {
+  const double x = r / c.radius;
+  return x < 1 ? c.peak_pressure * std::sqrt(1 - x * x) : 0.0;
 }
 
 }  // namespace asperity::contact

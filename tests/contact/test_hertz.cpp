@@ -75,3 +75,15 @@ TEST(HertzContact, AtTheImpactsPeakItIsTheOverlapsCircle) {
   // a grows as F^{1/3}: eight times the force doubles it.
   EXPECT_NEAR(hertz_contact(8 * h.peak_force, r, e).radius / c.radius, 2.0, 1e-13);
 }
+
+TEST(HertzContact, PressureIsTheEllipseUnderTheCircle) {
+  // p(r) = p0 √(1 − r²/a²) (Johnson 1985, §4.2): p0 at the centre, √3/2 p0 halfway, none
+  // from the rim on; halfway to a few roundings (a quotient, a square root, a product): 1e-15.
+  const HertzContact c = hertz_contact(100.0, 0.05, 1e7);
+  EXPECT_EQ(hertz_pressure(c, 0.0), c.peak_pressure);
+  EXPECT_NEAR(hertz_pressure(c, 0.5 * c.radius) / c.peak_pressure, std::sqrt(3.0) / 2, 1e-15);
+  EXPECT_EQ(hertz_pressure(c, c.radius), 0.0);
+  EXPECT_EQ(hertz_pressure(c, 2 * c.radius), 0.0);
+  // The deepest shear at 0.48 a (§4.2, ν = 0.3): the one product, exact to its rounding.
+  EXPECT_EQ(c.max_shear_depth, 0.48 * c.radius);
+}

@@ -112,13 +112,8 @@ def elastic_hertz_expected(t, m):
     return ex
 
 
-def cases(d):
-    mats = d["materials"]
-    rigid = material(d["rigid_wall"])
-    src = d["sources"]
-    out = {}
-
-    # Test 1: two identical spheres, elastic, normal.
+def test1_sphere_sphere(d, mats, rigid, src, out):
+    """Test 1: two identical spheres, elastic, normal."""
     t = d["test1"]
     for m in t["materials"]:
         r, v = t["radius"], t["speed_each"]
@@ -142,7 +137,9 @@ def cases(d):
             "source": f"{src['CO2011']} Inputs: {t['source']}.",
             "scene": scene, "expected": ex}
 
-    # Test 2: sphere on a rigid plane, elastic, normal.
+
+def test2_sphere_plane(d, mats, rigid, src, out):
+    """Test 2: sphere on a rigid plane, elastic, normal."""
     t = d["test2"]
     for m in t["materials"]:
         r, v = t["radius"], t["speed"]
@@ -157,7 +154,9 @@ def cases(d):
             "source": f"{src['CO2011']} Inputs: {t['source']}.",
             "scene": scene, "expected": ex}
 
-    # Test 3: restitution.
+
+def test3_restitution(d, mats, rigid, src, out):
+    """Test 3: restitution."""
     t = d["test3"]
     for m in t["materials"]:
         for e in t["restitution"]:
@@ -176,7 +175,9 @@ def cases(d):
                 "source": f"{src['CO2011']} Inputs: {t['source']}.",
                 "scene": scene, "expected": ex}
 
-    # Test 4: oblique impact, constant speed, varying angle.
+
+def test4_oblique_angle(d, mats, rigid, src, out):
+    """Test 4: oblique impact, constant speed, varying angle."""
     t = d["test4"]
     mu, en = t["friction"], t["restitution"]
     theta_c = math.degrees(math.atan(3.5 * mu * (1 + en)))
@@ -214,7 +215,9 @@ def cases(d):
                 "source": f"{src['CO2011']} Inputs: {t['source']}. Closed form: {src['ANALYTIC']}",
                 "scene": scene, "expected": ex}
 
-    # Test 5: constant normal speed, varying tangential speed (elastic).
+
+def test5_tangential_speed(d, mats, rigid, src, out):
+    """Test 5: constant normal speed, varying tangential speed (elastic)."""
     t = d["test5"]
     mu, en = t["friction"], t["restitution"]
     for m in t["materials"]:
@@ -245,7 +248,9 @@ def cases(d):
                 "source": f"{src['CO2011']} Inputs: {t['source']}. Closed form: {src['ANALYTIC']}",
                 "scene": scene, "expected": ex}
 
-    # Test 6: constant normal speed, zero centre tangential speed, varying spin.
+
+def test6_spin(d, mats, rigid, src, out):
+    """Test 6: constant normal speed, zero centre tangential speed, varying spin."""
     t = d["test6"]
     mu, en = t["friction"], t["restitution"]
     curve = t["reference_curve"]
@@ -271,7 +276,9 @@ def cases(d):
                 "source": f"{src['CO2011']} Inputs: {t['source']}. Closed form: {src['ANALYTIC']}",
                 "scene": scene, "expected": ex}
 
-    # Test 7: two identical spheres, equal and opposite spin: no slip, spin unchanged.
+
+def test7_opposite_spin(d, mats, rigid, src, out):
+    """Test 7: two identical spheres, equal and opposite spin: no slip, spin unchanged."""
     t = d["test7"]
     mu, en = t["friction"], t["restitution"]
     for m in t["materials"]:
@@ -301,7 +308,9 @@ def cases(d):
                 "source": f"{src['CO2011']} Inputs: {t['source']}.",
                 "scene": scene, "expected": ex}
 
-    # Test 8: small sphere with spin against a large, effectively immobile sphere.
+
+def test8_large_sphere(d, mats, rigid, src, out):
+    """Test 8: small sphere with spin against a large, effectively immobile sphere."""
     t = d["test8"]
     mu, en = t["friction"], t["restitution"]
     curve = t["reference_curve"]
@@ -335,6 +344,23 @@ def cases(d):
                 "tags": ["chung-ooi", "test8", "oblique", "sphere-sphere"],
                 "source": f"{src['CO2011']} Inputs: {t['source']}. Closed form: {src['ANALYTIC']}",
                 "scene": scene, "expected": ex}
+
+
+def cases(d):
+    """Every case of tests 1-8, by name, in the order of the tests."""
+    mats = d["materials"]
+    rigid = material(d["rigid_wall"])
+    src = d["sources"]
+    out = {}
+
+    test1_sphere_sphere(d, mats, rigid, src, out)
+    test2_sphere_plane(d, mats, rigid, src, out)
+    test3_restitution(d, mats, rigid, src, out)
+    test4_oblique_angle(d, mats, rigid, src, out)
+    test5_tangential_speed(d, mats, rigid, src, out)
+    test6_spin(d, mats, rigid, src, out)
+    test7_opposite_spin(d, mats, rigid, src, out)
+    test8_large_sphere(d, mats, rigid, src, out)
     return out
 
 

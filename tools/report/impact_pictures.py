@@ -11,7 +11,8 @@ matplotlib's 3-D polygons and 2-D triangles need nothing beyond deps/debian-pack
                                   .svg (contact pressure seen from below with the Hertz contact
                                   radius, the von Mises section under the contact, pressure
                                   against radius beside Hertz's) and .json (the numbers); Hertz's
-                                  numbers are asperity's (hertz_numbers, built beside ASPERITY:
+                                  numbers, his pressure curve and shear depth included, are
+                                  asperity's (hertz_numbers, built beside ASPERITY:
                                   solver/contact/hertz_impact.hpp), this script measures the mesh
   --study DIR [--resolution N] [--placement P]  (P: the first placement the study ran)
                                   each particle of an `asperity study` folder, fem and rigid at
@@ -184,8 +185,9 @@ def hertz_picture(asperity, scene, out_dir, work):
     radius = float(np.max(np.linalg.norm(x0 - centre0, axis=1)))
     f_peak = summary["peak_force"]
     # Hertz for the meshed sphere (its radius, its volume's mass) on the block, fixed and so rigid
-    # in the model: the contact radius a and centre pressure p0 at the run's peak force (Johnson
-    # 1985, §4.2), and the impact's peak force for the caption (§11.4).
+    # in the model: the contact radius a, the pressure p0 √(1 − r²/a²) and the depth of the
+    # deepest shear at the run's peak force (Johnson 1985, §4.2), and the impact's peak force for
+    # the caption (§11.4).
     hertz = hertz_numbers(asperity, os.path.join(work, "hertz"),
                           {"mass": m["density"] * frame.volume(), "radius": radius, "young": m["young"],
                            "poisson": m["poisson"], "speed": abs(b["velocity"][2]), "force": f_peak})
@@ -238,7 +240,8 @@ def hertz_picture(asperity, scene, out_dir, work):
     ax.add_collection(col)
     ax.axvline(-a * 1e3, color="c", lw=1)
     ax.axvline(a * 1e3, color="c", lw=1, label="±a (Hertz)")
-    ax.plot([0], [0.48 * a * 1e3], "w+", ms=10, mew=2, label="0.48a: Hertz's deepest shear peak")
+    depth = hertz["max_shear_depth"]
+    ax.plot([0], [depth * 1e3], "w+", ms=10, mew=2, label=f"{depth / a:.2f}a: Hertz's deepest shear peak")
     ax.set_xlim(-lim, lim)
     ax.set_ylim(0, 1.5 * lim)
     ax.set_aspect("equal")
@@ -252,8 +255,9 @@ def hertz_picture(asperity, scene, out_dir, work):
     ax = axes[2]
     loaded = frame.pressure > 0
     ax.plot(r_xy[loaded] * 1e3, frame.pressure[loaded] / 1e3, "o", ms=3, label="nodes (|F| / area share)")
-    r = np.linspace(0, a, 200)
-    ax.plot(r * 1e3, p0 * np.sqrt(1 - (r / a) ** 2) / 1e3, "c-", lw=1.5, label=f"Hertz, p0 = {p0 / 1e3:.0f} kPa")
+    profile = hertz["pressure_profile"]
+    ax.plot(np.array(profile["radius"]) * 1e3, np.array(profile["pressure"]) / 1e3, "c-", lw=1.5,
+            label=f"Hertz, p0 = {p0 / 1e3:.0f} kPa")
     ax.set_xlim(0, 2 * a * 1e3)
     ax.set_xlabel("r (mm)")
     ax.set_ylabel("contact pressure (kPa)")
