@@ -341,11 +341,13 @@ void read_reference(const JsonReader& r, StudyDef& s) {
     else if (v != "finest")
       r.fail("reference", "must be \"source\" or \"finest\" (got " + io::echo(v) + ")");
   }
-  for (const char* key : {"reference_patch_check", "reference_elements_across"}) {
+  for (const char* key :
+       {"reference_patch_check", "reference_elements_across", "reference_contact_mass"}) {
     if (r.has(key) && s.reference_kind != ReferenceKind::source)
       r.fail(key, "applies only with \"reference\": \"source\"");
   }
   s.source_reference.patch_check = r.boolean_or("reference_patch_check", false);
+  s.source_reference.contact_mass = r.boolean_or("reference_contact_mass", false);
   // Fewer than 1 element across the contact radius resolves nothing of it; above 12 the finest
   // level's tetrahedra run past the scene loader's limit on the study's particles.
   if (r.has("reference_elements_across"))
@@ -478,6 +480,8 @@ nlohmann::ordered_json definition_json(const StudyDef& def) {
     out["reference"] = reference_name(def.reference_kind);
     out["reference_patch_check"] = def.source_reference.patch_check;
     out["reference_elements_across"] = def.source_reference.elements_across;
+    // Only when set: the folders of source studies run without it keep their study.json.
+    if (def.source_reference.contact_mass) out["reference_contact_mass"] = true;
   }
   return out;
 }

@@ -329,8 +329,9 @@ scene::SceneDef source_case_scene(const StudyDef& def, const fs::path& out, cons
   if (def.refinement.max_contact_factor > 0) {
     s.contact.max_contact_factor = def.refinement.max_contact_factor;
   }
-  // The factor is met by contact mass, not by lowering the penalty of the faces that set the step
-  // (the study's own refined cases): at a sharp strike point those faces are the contact's, and
+  // "reference_contact_mass": the factor met by contact mass, not by lowering the penalty of the
+  // faces that set the step (the study's own refined cases): at a sharp strike point those faces
+  // are the contact's, and
   // face-penalty lowered them to 3.6-4.6 % of α, let the tip sink 25-77 µm into the block (20-25 %
   // of a level's element) and Munjiza's potential then fed energy in until an element inverted,
   // at the same time at half the step (ballast_01-o1 and ballast_03-o1 of data/study/
@@ -338,7 +339,7 @@ scene::SceneDef source_case_scene(const StudyDef& def, const fs::path& out, cons
   // penalty stays as asked (overlap 2-9 µm), 1e-5-9e-4 of the body's mass is added at the surface
   // nodes (a Hertz peak moves by 3/5 of it, and it shrinks with the level's size, so the limit
   // carries none of it), and the same levels run stable.
-  s.contact.contact_factor_by = scene::ContactFactorBy::mass;
+  if (def.source_reference.contact_mass) s.contact.contact_factor_by = scene::ContactFactorBy::mass;
   return s;
 }
 

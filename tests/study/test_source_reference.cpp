@@ -57,7 +57,7 @@ SourceLevel run_level(const fs::path& dir, const std::string& name, const fs::pa
     {"name": "block", "material": "rock", "shape": {"type": "box", "min": [)"
     << -half << ", " << -half << ", " << -half << R"(], "max": [)" << half << ", " << half
     << R"(, 0]}}],
-  "contact": {"law": "potential", "penalty_alpha": 100, "max_contact_factor": 2, "contact_factor_by": "mass"},
+  "contact": {"law": "potential", "penalty_alpha": 100, "max_contact_factor": 2},
   "record": {"force_on": "particle", "every": 1000, "end_after_separation": )"
     << 0.25 * contact_time << "}}";
   const fs::path scene = dir / (name + ".json");
