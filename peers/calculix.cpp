@@ -298,6 +298,7 @@ PeerTrace run(const scene::SceneDef& s, const Resolved& r, const fs::path& exe, 
           {"sigma_inf", 1e-3 * 2 * e_star * std::sqrt(overlap / radius) / std::numbers::pi},
           {"alpha", -0.05},
           {"dt", t_hertz / kIncrementsPerHertzTime},
+          {"increments_per_hertz_time", kIncrementsPerHertzTime},
           {"t_end", t_end},
           {"gravity_z", s.gravity.dot(n)},
           {"gmsh", gmsh.string()},
@@ -338,6 +339,7 @@ PeerTrace run(const scene::SceneDef& s, const Resolved& r, const fs::path& exe, 
   // ccx's own increments replace asperity's step in the summary.
   tr.extra["dt"] = in.at("dt");
   tr.extra["steps"] = raw.at("increments");
+  tr.extra["calculix_increments_per_hertz_time"] = in.at("increments_per_hertz_time");
   for (const char* k : {"nodes", "tets", "symmetry", "meshed_mass", "slave_nodes"})
     tr.extra[std::string("calculix_") + k] = raw.at(k);
   return tr;
