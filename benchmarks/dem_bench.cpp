@@ -7,6 +7,7 @@
 #include <benchmark/benchmark.h>
 
 #include "solver/core/clock.hpp"
+#include "solver/dem/mindlin_columns.hpp"
 #include "solver/dem/sphere_world.hpp"
 #include "solver/run/run_scene.hpp"
 
@@ -92,6 +93,64 @@ void BM_Packing10k(benchmark::State& state) {
       static_cast<double>(w.contact_updates - updates0) / static_cast<double>(steps);
 }
 BENCHMARK(BM_Packing10k)->Arg(0)->Arg(1)->ArgName("mindlin")->Unit(benchmark::kMillisecond);
+
+// The Hertz–Mindlin law over one batch of 32 touching contacts in columns
+// (dem/mindlin_columns.hpp), in the copy named by the argument: 0 the baseline's, 1 x86-64-v3's
+// (AVX2), 2 x86-64-v4's (AVX-512); skipped where this CPU cannot run it. A copy's share of
+// BM_Packing10k's contact pass, apart from the gather and the sums: the force loop runs only the
+// widest copy the CPU has, so this is where the others are measured. The contacts: the packing's
+// lattice contacts (glass, r = 1 mm, pressed 0.1 %), with slips and springs that stick.
+void BM_MindlinColumns(benchmark::State& state) {
+  const auto copy = static_cast<dem::MindlinCopy>(state.range(0));
+  const dem::MindlinColumnsFn law = dem::mindlin_columns_copy(copy);
+  if (law == nullptr) {
+    state.SkipWithError("this CPU does not run that copy");
+    return;
+  }
+  const contact::HertzMindlinCoefficients c =
+      contact::hertz_mindlin_coefficients({.young_eff = 3.3e10,
+                                           .shear_eff = 1.4e10,
+                                           .radius_eff = 5e-4,
+                                           .mass_eff = 5.2e-6,
+                                           .zeta = 0.2,
+                                           .friction = 0.3});
+  dem::MindlinColumns b{};
+  double history[4][dem::kColumn] = {};
+  const std::size_t t = dem::kBatch;
+  for (std::size_t m = 0; m < t; ++m) {
+    const double s = 1e-3 * static_cast<double>(m);
+    b.d[0][m] = 2e-3 * (1 - 1e-3);
+    b.d[1][m] = 1e-6 * s;
+    b.d[2][m] = -1e-6 * s;
+    b.dist[m] = std::sqrt(b.d[0][m] * b.d[0][m] + b.d[1][m] * b.d[1][m] + b.d[2][m] * b.d[2][m]);
+    b.overlap[m] = 2e-3 - b.dist[m];
+    b.ri[m] = b.rj[m] = 1e-3;
+    for (int a = 0; a < 3; ++a) {
+      b.vi[a][m] = 1e-4 * (a + 1) * s;
+      b.vj[a][m] = -1e-4 * s;
+      b.wi[a][m] = 0.1 * s;
+      b.wj[a][m] = -0.1 * (a - 1) * s;
+      b.dv_end[a][m] = 2e-4 * s;
+    }
+    b.k[m] = c.normal.k;
+    b.damping[m] = c.normal.damping;
+    b.shear[m] = c.shear;
+    b.shear_damping[m] = c.shear_damping;
+    b.friction[m] = c.friction;
+    b.inv_min_radius[m] = 1e3;
+  }
+  long contacts = 0;
+  for (auto _ : state) {
+    for (int k = 0; k < 1000; ++k) {
+      law(b, t, 1e-8, history[0], history[1], history[2], history[3]);
+      benchmark::ClobberMemory();
+    }
+    contacts += 1000 * static_cast<long>(t);
+  }
+  state.counters["contacts/s"] =
+      benchmark::Counter(static_cast<double>(contacts), benchmark::Counter::kIsRate);
+}
+BENCHMARK(BM_MindlinColumns)->Arg(0)->Arg(1)->Arg(2)->ArgName("copy");
 
 // A whole `asperity run` of the bed of tools/cases/bed_scene.py at N spheres (a cube of side
 // ∛N on the plane, glass, Hertz–Mindlin, dt 2.5e-7 s, 20 steps), built in memory instead of read

@@ -14,6 +14,8 @@
 #include "solver/core/error.hpp"
 #include "solver/core/ticks.hpp"
 #include "solver/dem/cell_grid.hpp"
+#include "solver/dem/hertz_contact.hpp"
+#include "solver/dem/mindlin_columns.hpp"
 
 namespace asperity::dem {
 namespace {
@@ -26,50 +28,6 @@ struct ContactGeometry {
   double radius_eff;  // R*, m
   double mass_eff;    // m*, kg
 };
-
-struct ContactOutcome {
-  Vec3 force = Vec3::Zero();         // on body 1, N
-  Vec3 normal_force = Vec3::Zero();  // its normal part (elastic + normal damping), N
-  double dissipated = 0;             // this step, J
-};
-
-// A contact's outcome from its normal and tangential law forces: the total force, and the work of
-// the non-elastic normal part over this step's overlap change by the trapezoidal rule (the rule
-// velocity Verlet applies to the kinetic energy), so the energy balance closes to O(dt²) rather
-// than O(dt). Updates the contact's history (spring, last viscous force).
-ContactOutcome outcome(const contact::NormalForce& fn, const contact::TangentialForce& ft,
-                       const Vec3& n, double rate, Vec3& spring, double& viscous, double dt) {
-  ContactOutcome out;
-  out.normal_force = fn.force * n;
-  const double viscous_now = fn.force - fn.elastic;
-  out.dissipated = 0.5 * (viscous + viscous_now) * rate * dt;
-  viscous = viscous_now;
-  spring = ft.spring;
-  out.force = out.normal_force + ft.force;
-  out.dissipated += ft.dissipated;
-  return out;
-}
-
-// Hertz (mindlin false) or Hertz–Mindlin force on body 1 of one touching contact, from the pair's
-// coefficients (contact/hertz_mindlin.hpp, a pure function), its geometry and history.
-template <bool mindlin>
-[[gnu::always_inline]] inline ContactOutcome hertz_contact(
-    const contact::HertzMindlinCoefficients& c, const Vec3& n, double overlap, const Vec3& v_rel,
-    double rate_end, Vec3& spring, double& viscous, double dt) {
-  const double rate = -v_rel.dot(n);
-  contact::NormalForce fn;
-  contact::TangentialForce ft;
-  if constexpr (mindlin) {
-    const Vec3 slip = v_rel - v_rel.dot(n) * n;
-    const contact::HertzMindlinForce f = contact::hertz_mindlin(
-        overlap, rate_end, slip, contact::rotate_into_tangent_plane(spring, n), dt, c);
-    fn = f.normal;
-    ft = f.tangential;
-  } else {
-    fn = contact::hertz_normal(overlap, rate_end, c.normal);
-  }
-  return outcome(fn, ft, n, rate, spring, viscous, dt);
-}
 
 contact::HertzMindlinCoefficients coefficients_of(const PairConstants& pc,
                                                   const ContactGeometry& g) {
@@ -268,7 +226,7 @@ void pair_forces_each(SphereWorld& w, double dt) {
 //   1. distances (stage_distances): the apart pairs' gap output and history; what the law reads
 //      of the touching ones gathered into columns, one array per component (gather_mindlin);
 //   2. the law over the columns, vectorised by the compiler: 8 contacts per instruction with
-//      AVX-512 (mindlin_columns); it reads and writes the history (PairHistory, columns of the
+//      AVX-512 (mindlin_columns.hpp); it reads and writes the history (PairHistory, columns of the
 //      list's own) in place where every pair of the batch touches, so that a dense packing's
 //      history is neither gathered nor written back (4 stores per contact fewer: the core retires
 //      one store per cycle, and the gather and write-back were half the loop's time);
@@ -277,8 +235,8 @@ void pair_forces_each(SphereWorld& w, double dt) {
 // (force, torque, contact output, dissipated energy) are added in the order of the list, so the
 // results are the same bit for bit; maxima (the overlap output, the largest overlap ratio) do not
 // depend on order. BM_Packing10k mindlin: 1.50x the loop one contact after another, and 1.08x
-// more with the history in place (docs/performance.md).
-constexpr std::size_t kBatch = 32;  // pairs per batch: its columns stay in L1 (~16 kB)
+// more with the history in place (docs/performance.md). The law's bits are pinned to
+// hertz_contact<true>'s by tests/dem/test_mindlin_columns.cpp.
 
 // Stage 1: pairs [k0, k1). Apart pairs: their gap output and cleared history (apart). Touching
 // ones: their overlap output taken, and handed in list order to touching(t, k, d, dist, overlap),
@@ -303,137 +261,6 @@ std::size_t stage_distances(SphereWorld& w, std::size_t k0, std::size_t k1, Touc
     touching(t++, k, d, dist, overlap);
   }
   return t;
-}
-
-// A column's length: a batch and a cache line more, so that the columns do not lie a multiple of
-// 4 kB apart (loads and stores that far apart wait on each other: 4K aliasing).
-constexpr std::size_t kColumn = kBatch + 8;
-
-// What the Hertz–Mindlin law reads and gives of a batch of touching contacts, in columns (one
-// array per component and quantity), so that the compiler runs the law over several contacts per
-// instruction (mindlin_columns).
-struct MindlinColumns {
-  // In, gathered by gather_mindlin.
-  double d[3][kColumn];                                                   // x_i − x_j, m
-  double dist[kColumn], overlap[kColumn];                                 // |d|, reach − |d|, m
-  double ri[kColumn], rj[kColumn];                                        // radii, m
-  double vi[3][kColumn], wi[3][kColumn], vj[3][kColumn], wj[3][kColumn];  // m/s, rad/s
-  double dv_end[3][kColumn];  // v_end,i − v_end,j, m/s
-  double k[kColumn], damping[kColumn], shear[kColumn], shear_damping[kColumn], friction[kColumn];
-  double inv_min_radius[kColumn];
-  // Out.
-  double force[3][kColumn], normal_force[3][kColumn];  // on sphere i, N
-  double torque_i[3][kColumn], torque_j[3][kColumn];   // arm1 × force, arm2 × force, N·m
-  double dissipated[kColumn];                          // J
-  double ratio[kColumn];                               // overlap / smaller radius
-};
-
-inline double dot3(double ax, double ay, double az, double bx, double by, double bz) {
-  return (ax * bx + ay * by) + az * bz;
-}
-
-#if defined(__x86_64__) && defined(__GNUC__) && !defined(__clang__)
-// Copies for x86-64-v4 and x86-64-v3 beside the baseline's, chosen at load time. GCC 12 vectorises
-// the v4 copy (AVX-512: 8 contacts per instruction, the selects as masks); its cost model leaves
-// the v3 and baseline copies scalar (they gain from the staging alone). No fused multiply-add in
-// any (this file is compiled without contraction), so all three give the same bits.
-[[gnu::target_clones("arch=x86-64-v4", "arch=x86-64-v3", "default")]]
-#endif
-void mindlin_columns(MindlinColumns& __restrict b, std::size_t t, double dt,
-                     double* __restrict sx, double* __restrict sy, double* __restrict sz,
-                     double* __restrict viscous) {
-  // hertz_contact<true> written out in scalars over the columns. Each line is the operation the
-  // Eigen expression it replaces performs, in the same order (a 3-vector's dot product and squared
-  // norm are (x x' + y y') + z z', as Eigen's two-lane reduction sums them; a cross product is
-  // Eigen's (a_y b_z − a_z b_y, …)), no multiply-add is fused (-ffp-contract=off for this file),
-  // and both sides of the Coulomb test are computed and one chosen, so every contact gets the bits
-  // it gets computed whole. The formulas: contact::hertz_normal,
-  // contact::rotate_into_tangent_plane, contact::tangential_spring (Hertz–Mindlin:
-  // contact::hertz_mindlin) and outcome(). The history (sx, sy, sz: the spring, N; viscous, N)
-  // is read and written in place: contact m's last step's on entry, this step's on return.
-  for (std::size_t m = 0; m < t; ++m) {
-    // The normal, one quotient (n = d · (1/|d|)).
-    const double inv = 1.0 / b.dist[m];
-    const double nx = b.d[0][m] * inv, ny = b.d[1][m] * inv, nz = b.d[2][m] * inv;
-    const double overlap = b.overlap[m];
-    b.ratio[m] = overlap * b.inv_min_radius[m];
-    // Contact arms and the relative velocity at the contact point.
-    const double a1 = -(b.ri[m] - 0.5 * overlap), a2 = b.rj[m] - 0.5 * overlap;
-    const double a1x = a1 * nx, a1y = a1 * ny, a1z = a1 * nz;
-    const double a2x = a2 * nx, a2y = a2 * ny, a2z = a2 * nz;
-    const double wix = b.wi[0][m], wiy = b.wi[1][m], wiz = b.wi[2][m];
-    const double wjx = b.wj[0][m], wjy = b.wj[1][m], wjz = b.wj[2][m];
-    const double vx =
-        (b.vi[0][m] + (wiy * a1z - wiz * a1y)) - (b.vj[0][m] + (wjy * a2z - wjz * a2y));
-    const double vy =
-        (b.vi[1][m] + (wiz * a1x - wix * a1z)) - (b.vj[1][m] + (wjz * a2x - wjx * a2z));
-    const double vz =
-        (b.vi[2][m] + (wix * a1y - wiy * a1x)) - (b.vj[2][m] + (wjx * a2y - wjy * a2x));
-    const double rate_end = -dot3(b.dv_end[0][m], b.dv_end[1][m], b.dv_end[2][m], nx, ny, nz);
-    const double vn = dot3(vx, vy, vz, nx, ny, nz);
-    const double rate = -vn;
-    // Hertz's normal force with Tsuji's dashpot (contact::hertz_normal).
-    const double sqrt_d = std::sqrt(overlap), fourth_d = std::sqrt(sqrt_d);
-    const double elastic = b.k[m] * overlap * sqrt_d;
-    const double damping = b.damping[m] * fourth_d * rate_end;
-    const double sum = elastic + damping;
-    const double fn = 0.0 < sum ? sum : 0.0;  // std::max(0.0, sum)
-    // Last step's spring rotated into the tangent plane (contact::rotate_into_tangent_plane).
-    const double sx0 = sx[m], sy0 = sy[m], sz0 = sz[m];
-    const double sn = dot3(sx0, sy0, sz0, nx, ny, nz);
-    double rx = sx0 - sn * nx, ry = sy0 - sn * ny, rz = sz0 - sn * nz;
-    const double ss = dot3(rx, ry, rz, rx, ry, rz);
-    const double scale = std::sqrt(dot3(sx0, sy0, sz0, sx0, sy0, sz0) / ss);
-    rx = ss > 0 ? rx * scale : rx;
-    ry = ss > 0 ? ry * scale : ry;
-    rz = ss > 0 ? rz * scale : rz;
-    // The tangential spring with its Coulomb cap (contact::tangential_spring).
-    const double slx = vx - vn * nx, sly = vy - vn * ny, slz = vz - vn * nz;
-    const double kt = b.shear[m] * sqrt_d, ct = b.shear_damping[m] * fourth_d;
-    const double kdt = kt * dt, mct = -ct;
-    const double trx = rx - kdt * slx, try_ = ry - kdt * sly, trz = rz - kdt * slz;
-    const double fdx = mct * slx, fdy = mct * sly, fdz = mct * slz;
-    const double tfx = trx + fdx, tfy = try_ + fdy, tfz = trz + fdz;
-    const double cap = b.friction[m] * fn;
-    const double tf2 = dot3(tfx, tfy, tfz, tfx, tfy, tfz);
-    const bool sliding = tf2 > cap * cap;
-    // Sliding: μ F_n along the trial force, carried by the spring; the work of the slip.
-    const double total = std::sqrt(tf2);
-    const double share = cap / total;
-    const double excess = std::sqrt(dot3(trx, try_, trz, trx, try_, trz)) - cap;
-    const double slid = cap * (0.0 < excess ? excess : 0.0) / kt;
-    const double slide_x = total > 0 ? share * tfx : 0.0;
-    const double slide_y = total > 0 ? share * tfy : 0.0;
-    const double slide_z = total > 0 ? share * tfz : 0.0;
-    // Sticking: spring plus dashpot; the dashpot's work.
-    const double stick = -dot3(fdx, fdy, fdz, slx, sly, slz) * dt;
-    const double spx = sliding ? slide_x : trx, spy = sliding ? slide_y : try_,
-                 spz = sliding ? slide_z : trz;
-    const double ftx = sliding ? slide_x : tfx, fty = sliding ? slide_y : tfy,
-                 ftz = sliding ? slide_z : tfz;
-    const double tangential_work = sliding ? (kt > 0 ? slid : 0.0) : stick;
-    // The contact's outcome (outcome()): total force, normal part, work of the normal dashpot.
-    const double nfx = fn * nx, nfy = fn * ny, nfz = fn * nz;
-    const double viscous_now = fn - elastic;
-    b.dissipated[m] = 0.5 * (viscous[m] + viscous_now) * rate * dt + tangential_work;
-    viscous[m] = viscous_now;
-    sx[m] = spx;
-    sy[m] = spy;
-    sz[m] = spz;
-    const double fx = nfx + ftx, fy = nfy + fty, fz = nfz + ftz;
-    b.normal_force[0][m] = nfx;
-    b.normal_force[1][m] = nfy;
-    b.normal_force[2][m] = nfz;
-    b.force[0][m] = fx;
-    b.force[1][m] = fy;
-    b.force[2][m] = fz;
-    b.torque_i[0][m] = a1y * fz - a1z * fy;
-    b.torque_i[1][m] = a1z * fx - a1x * fz;
-    b.torque_i[2][m] = a1x * fy - a1y * fx;
-    b.torque_j[0][m] = a2y * fz - a2z * fy;
-    b.torque_j[1][m] = a2z * fx - a2x * fz;
-    b.torque_j[2][m] = a2x * fy - a2y * fx;
-  }
 }
 
 // The law's columns of contacts [m0, m1) of a batch.
@@ -514,6 +341,7 @@ void mindlin_pair_forces(SphereWorld& w, double dt) {
   // A packing of one size and material has one law: its columns are set once, not per contact.
   const bool one_law = w.laws.size() == 1;
   if (one_law) set_mindlin_law(w.laws[0], 0, kBatch, columns);
+  const MindlinColumnsFn law = mindlin_columns();  // this CPU's widest copy
   PairHistory& h = w.history;
   const std::size_t np = w.pairs.size();
   for (std::size_t k0 = 0; k0 < np; k0 += kBatch) {
@@ -526,14 +354,13 @@ void mindlin_pair_forces(SphereWorld& w, double dt) {
     if (t == k1 - k0) {
       // Every pair of the batch touches (a dense packing's usual batch): contact m is pair
       // k0 + m, and the law reads and writes its history in the list's columns.
-      mindlin_columns(columns, t, dt, &h.spring[0][k0], &h.spring[1][k0], &h.spring[2][k0],
-                      &h.viscous[k0]);
+      law(columns, t, dt, &h.spring[0][k0], &h.spring[1][k0], &h.spring[2][k0], &h.viscous[k0]);
     } else {
       for (std::size_t m = 0; m < t; ++m) {
         for (int a = 0; a < 3; ++a) history[a][m] = h.spring[a][pair[m]];
         history[3][m] = h.viscous[pair[m]];
       }
-      mindlin_columns(columns, t, dt, history[0], history[1], history[2], history[3]);
+      law(columns, t, dt, history[0], history[1], history[2], history[3]);
       for (std::size_t m = 0; m < t; ++m) {
         for (int a = 0; a < 3; ++a) h.spring[a][pair[m]] = history[a][m];
         h.viscous[pair[m]] = history[3][m];
