@@ -383,7 +383,8 @@ StudyDef load_study(const fs::path& file) {
                "jobs",
                "reference",
                "reference_patch_check",
-               "reference_elements_across"});
+               "reference_elements_across",
+               "reference_contact_mass"});
   StudyDef s;
   s.file = file;
   s.name = r.has("name") ? r.string("name") : file.stem().string();

@@ -51,6 +51,13 @@ TEST(StudyReference, FinestIsTheDefaultAndSourceIsPartOfTheDefinition) {
   const nlohmann::ordered_json j = definition_json(source);
   EXPECT_EQ(j["reference"], "source");
   EXPECT_EQ(j["reference_patch_check"], true);
+  // Contact mass only when asked, and only then in study.json (folders run before keep theirs).
+  EXPECT_FALSE(source.source_reference.contact_mass);
+  EXPECT_FALSE(j.contains("reference_contact_mass"));
+  const StudyDef mass =
+      load_study(study_file("mass", R"(, "reference": "source", "reference_contact_mass": true)"));
+  EXPECT_TRUE(mass.source_reference.contact_mass);
+  EXPECT_EQ(definition_json(mass)["reference_contact_mass"], true);
   // Another reference is another study: a folder of the one refuses the other.
   EXPECT_NE(first_difference(nlohmann::json::parse(definition_json(finest).dump()),
                              nlohmann::json::parse(j.dump())),
@@ -64,7 +71,9 @@ TEST(StudyReference, BadValuesAreRefusedNamingFileAndKey) {
       {R"(, "reference_patch_check": true)", "reference_patch_check"},
       {R"(, "reference": "source", "reference_patch_check": "yes")", "reference_patch_check"},
       {R"(, "reference": "source", "reference_elements_across": 0.5)", "reference_elements_across"},
-      {R"(, "reference": "finest", "reference_elements_across": 3)", "reference_elements_across"}};
+      {R"(, "reference": "finest", "reference_elements_across": 3)", "reference_elements_across"},
+      {R"(, "reference_contact_mass": true)", "reference_contact_mass"},
+      {R"(, "reference": "source", "reference_contact_mass": 1)", "reference_contact_mass"}};
   for (const auto& [extra, key] : bad) {
     try {
       load_study(study_file("bad", extra));
