@@ -28,7 +28,9 @@ fs::path scratch(const std::string& name) {
 }
 
 fs::path study_file(const std::string& name, const std::string& extra) {
-  const fs::path file = scratch("def") / (name + ".json");
+  // A folder per file: ctest runs each test in its own process, side by side, and scratch()
+  // empties its folder, so one shared folder let one test delete another's file (seen once).
+  const fs::path file = scratch("def_" + name) / (name + ".json");
   std::ofstream(file) << R"({"particles": {"meshes": [{"name": "p", "file": ")"
                       << ASPERITY_SOURCE_DIR << R"(/data/meshes/particle-seed3-320.off"}]},
     "resolutions": [100], "models": ["sphere"], "placements": ["lowest"])"
