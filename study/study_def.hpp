@@ -85,8 +85,8 @@ struct SourceReferenceDef {
   // "reference_contact_mass": the levels meet the refinement's contact factor by contact mass
   // (contact_factor_by "mass") instead of the refined cases' face penalty. At a sharp strike
   // point face-penalty lowers the contact faces' penalty to a few % of α, and the levels can
-  // then end unstable (docs/study.md, "The source reference"); false keeps the studies
-  // committed before 7 December 2026 as they were run.
+  // then end unstable (docs/study.md, "The wider study against the particle"); false keeps the
+  // studies committed before 7 December 2026 as they were run.
   bool contact_mass = false;
 };
 

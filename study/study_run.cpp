@@ -331,14 +331,13 @@ scene::SceneDef source_case_scene(const StudyDef& def, const fs::path& out, cons
   }
   // "reference_contact_mass": the factor met by contact mass, not by lowering the penalty of the
   // faces that set the step (the study's own refined cases): at a sharp strike point those faces
-  // are the contact's, and
-  // face-penalty lowered them to 3.6-4.6 % of α, let the tip sink 25-77 µm into the block (20-25 %
-  // of a level's element) and Munjiza's potential then fed energy in until an element inverted,
-  // at the same time at half the step (ballast_01-o1 and ballast_03-o1 of data/study/
-  // wide-source.json, 7 December 2026; docs/study.md, "The source reference"). With mass the
-  // penalty stays as asked (overlap 2-9 µm), 1e-5-9e-4 of the body's mass is added at the surface
-  // nodes (a Hertz peak moves by 3/5 of it, and it shrinks with the level's size, so the limit
-  // carries none of it), and the same levels run stable.
+  // are the contact's, and face-penalty lowered them to 3.6-4.6 % of α, let the tip sink 25-77 µm
+  // into the block (a fifth of a level's element) and Munjiza's potential then fed energy in until
+  // an element inverted, at the same time at half the step (ballast_01-o1 and ballast_03-o1 of
+  // data/study/wide-source.json, 7 December 2026; docs/study.md, "The wider study against the
+  // particle"). With mass the penalty stays as asked (ballast_01-o1's levels sink 3-9 µm), 1e-5 to
+  // 2.5e-3 of the body's mass is added at the surface nodes (a Hertz peak moves by 3/5 of it, less
+  // at each finer level, so the limit carries none of it), and the same levels run stable.
   if (def.source_reference.contact_mass) s.contact.contact_factor_by = scene::ContactFactorBy::mass;
   return s;
 }

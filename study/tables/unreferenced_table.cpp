@@ -3,8 +3,6 @@
 // (an inverted element, energy growth: the run's own checks) takes its particle out of every error
 // of the study. Without this table that particle would only be missing from references.csv,
 // and a median "over the particles" would silently be over fewer of them.
-#include <algorithm>
-
 #include "study/tables/tables.hpp"
 
 namespace asperity::study::tables {
@@ -15,8 +13,7 @@ namespace {
 // fem sequence (the coarse case and every refined level) at the finest resolution.
 bool makes_reference(const StudyDef& def, const CaseKey& k) {
   if (def.reference_kind == ReferenceKind::source) return k.source_patch == 1;
-  return k.source_patch == 0 && k.model == ModelKind::fem &&
-         k.resolution == *std::max_element(def.resolutions.begin(), def.resolutions.end());
+  return k.source_patch == 0 && k.model == ModelKind::fem && k.resolution == def.reference;
 }
 
 }  // namespace

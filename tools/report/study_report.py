@@ -31,6 +31,7 @@ from tabular import fmt, num, pct, read_csv  # noqa: E402  (beside this file)
 
 TABLES = ["cases.csv", "references.csv", "classification.csv", "particle_classes.csv", "cpu_fit.csv",
           "candidates.csv", "guidelines.csv", "discretization.csv", "answer.csv", "few_hundred.csv"]
+OPTIONAL_TABLES = ["unreferenced.csv"]
 MODEL_COLOURS = {"fem": "tab:blue", "rigid": "tab:orange", "rigid-penalty": "tab:red", "sphere": "tab:green",
                  "sphere-local": "tab:purple"}
 SPHERES = ("sphere", "sphere-local")
@@ -717,8 +718,7 @@ def answer_section(doc, study, published):
             f"are the {len(definition['particles'])} particle-orientations ({len(definition['particles']) // k} "
             f"particles x {k}), so each error is a distribution over particles and orientations." if k else "")
     references = read_csv(os.path.join(study, "references.csv"))
-    missing = unreferenced_paragraph(read_unreferenced(study),
-                                     len(definition["particles"]) * len(definition.get("placements", [pl])))
+    missing = unreferenced_note(study, definition)
     if missing:
         doc.p(missing)
     if geometry_unmeasured(references):
@@ -835,11 +835,12 @@ def source_reference_section(doc, references):
                "uncertainty (peak)", "uncertainty (duration)", "uncertainty (impulse)"], rows)
 
 
-def read_unreferenced(study):
-    """unreferenced.csv (asperity study): the particles with no reference and why; [] for a folder
-    written before the table existed."""
+def unreferenced_note(study, definition):
+    """unreferenced_paragraph of the study folder's unreferenced.csv (asperity study) over its study.json's
+    particles x placements; None where every particle has its reference or the folder predates the table."""
     path = os.path.join(study, "unreferenced.csv")
-    return read_csv(path) if os.path.exists(path) else []
+    rows = read_csv(path) if os.path.exists(path) else []
+    return unreferenced_paragraph(rows, len(definition["particles"]) * len(definition["placements"]))
 
 
 def unreferenced_paragraph(rows, total):
@@ -933,7 +934,9 @@ def main():
     a = ap.parse_args()
     check_inputs(a.study)
     os.makedirs(a.out, exist_ok=True)
-    for t in TABLES + ["study_summary.json", "guidelines.json"]:
+    # unreferenced.csv is optional: a folder written before the table existed has none.
+    tables = TABLES + [t for t in OPTIONAL_TABLES if os.path.exists(os.path.join(a.study, t))]
+    for t in tables + ["study_summary.json", "guidelines.json"]:
         src = os.path.join(a.study, t)
         if os.path.abspath(src) != os.path.abspath(os.path.join(a.out, t)):
             shutil.copyfile(src, os.path.join(a.out, t))
@@ -950,13 +953,8 @@ def main():
     if definition.get("reference") == "source":
         REFERENCE["name"] = "the particle itself (its source reference)"
 
-    for t in TABLES:
+    for t in tables:
         write_markdown_table(os.path.join(a.study, t), os.path.join(a.out, t[:-4] + ".md"))
-    # unreferenced.csv: optional, a folder written before the table existed has none.
-    if os.path.exists(os.path.join(a.study, "unreferenced.csv")):
-        if os.path.abspath(a.study) != os.path.abspath(a.out):
-            shutil.copyfile(os.path.join(a.study, "unreferenced.csv"), os.path.join(a.out, "unreferenced.csv"))
-        write_markdown_table(os.path.join(a.study, "unreferenced.csv"), os.path.join(a.out, "unreferenced.md"))
     uncertainty = {}
     for g in guidelines:
         uncertainty.setdefault((g["placement"], g["metric"]), {})[g["statistic"]] = g["reference_uncertainty"]
@@ -973,8 +971,7 @@ def main():
                     "the finest resolution")
     references_section(doc, read_csv(os.path.join(a.study, "references.csv")), refinement.get("growth"),
                        refinement.get("max_contact_factor") or 0,
-                       unreferenced_paragraph(read_unreferenced(a.study),
-                                              len(definition["particles"]) * len(definition.get("placements", []))))
+                       unreferenced_note(a.study, definition))
     doc.p(f"{summary['particles']} particles x resolutions {summary['resolutions']} x models "
           f"{', '.join(summary['models'])} x placements {', '.join(summary['placements'])}: {summary['cases']} cases, "
           f"{summary['done']} done, {summary['failed']} failed. Each particle is launched straight down onto a fixed "
