@@ -341,13 +341,19 @@ void read_reference(const JsonReader& r, StudyDef& s) {
     else if (v != "finest")
       r.fail("reference", "must be \"source\" or \"finest\" (got " + io::echo(v) + ")");
   }
-  for (const char* key :
-       {"reference_patch_check", "reference_elements_across", "reference_contact_mass"}) {
+  for (const char* key : {"reference_patch_check", "reference_elements_across",
+                          "reference_contact_mass", "reference_added_mass"}) {
     if (r.has(key) && s.reference_kind != ReferenceKind::source)
       r.fail(key, "applies only with \"reference\": \"source\"");
   }
   s.source_reference.patch_check = r.boolean_or("reference_patch_check", false);
-  s.source_reference.contact_mass = r.boolean_or("reference_contact_mass", false);
+  s.source_reference.contact_mass = r.boolean_or("reference_contact_mass", true);
+  if (r.has("reference_added_mass")) {
+    if (!s.source_reference.contact_mass)
+      r.fail("reference_added_mass", "applies only with \"reference_contact_mass\": true");
+    // 0: the refinement's factor as it is; below 1: a fraction of the body's mass.
+    s.source_reference.added_mass = r.in_range("reference_added_mass", 0, 1, false, true);
+  }
   // Fewer than 1 element across the contact radius resolves nothing of it; above 12 the finest
   // level's tetrahedra run past the scene loader's limit on the study's particles.
   if (r.has("reference_elements_across"))
@@ -384,7 +390,8 @@ StudyDef load_study(const fs::path& file) {
                "reference",
                "reference_patch_check",
                "reference_elements_across",
-               "reference_contact_mass"});
+               "reference_contact_mass",
+               "reference_added_mass"});
   StudyDef s;
   s.file = file;
   s.name = r.has("name") ? r.string("name") : file.stem().string();
@@ -481,8 +488,12 @@ nlohmann::ordered_json definition_json(const StudyDef& def) {
     out["reference"] = reference_name(def.reference_kind);
     out["reference_patch_check"] = def.source_reference.patch_check;
     out["reference_elements_across"] = def.source_reference.elements_across;
-    // Only when set: the folders of source studies run without it keep their study.json.
-    if (def.source_reference.contact_mass) out["reference_contact_mass"] = true;
+    // Both always: a folder run with another contact fix or budget (face-penalty, the default
+    // before 8 December 2026; mass without a budget) has other levels and is refused.
+    out["reference_contact_mass"] = def.source_reference.contact_mass;
+    if (def.source_reference.contact_mass) {
+      out["reference_added_mass"] = def.source_reference.added_mass;
+    }
   }
   return out;
 }

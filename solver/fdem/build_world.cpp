@@ -321,6 +321,7 @@ World make_world(const WorldDef& def) {
   set_face_stiffness(w, surface.faces);
   w.penalty_asked = w.penalty;
   if (w.law == ContactLaw::potential && def.contact.max_contact_factor > 0) {
+    w.contact_factor = def.contact.max_contact_factor;
     switch (def.contact.contact_step_fix) {
       case ContactStepFix::penalty:
         limit_penalty(w, def.contact.max_contact_factor);
@@ -329,7 +330,12 @@ World make_world(const WorldDef& def) {
         limit_face_penalty(w, def.contact.max_contact_factor);
         break;
       case ContactStepFix::mass:
-        scale_contact_mass(w, def.contact.max_contact_factor);
+        if (def.contact.max_added_mass > 0) {
+          w.contact_factor = scale_contact_mass_within(w, def.contact.max_contact_factor,
+                                                       def.contact.max_added_mass);
+        } else {
+          scale_contact_mass(w, def.contact.max_contact_factor);
+        }
         break;
     }
   }

@@ -192,11 +192,19 @@ double limit_face_penalty(World& w, double factor) {
   return least;
 }
 
-double scale_contact_mass(World& w, double factor) {
+namespace {
+
+// scale_contact_mass with an optional budget (max_added > 0: scale_contact_mass_within). Returns
+// the largest Δm/m over the bodies and the factor met (the least over the bodies where the budget
+// lowered it, else `factor`).
+struct MassScaling {
+  double largest = 0, factor = 0;
+};
+MassScaling scale_contact_mass_impl(World& w, double factor, double max_added) {
   const std::vector<double> k_row = face_rows(w);
   const auto n = static_cast<std::size_t>(w.node_count());
   std::vector<double> added(n, 0.0);
-  double largest = 0;
+  MassScaling out{.factor = factor};
   for (std::size_t b = 0; b < w.bodies.size(); ++b) {
     const Body& body = w.bodies[b];
     if (body.kind != BodyKind::deformable) continue;
@@ -209,7 +217,14 @@ double scale_contact_mass(World& w, double factor) {
         added[i] = std::max(0.0, k_row[i] / (gamma * l.omega_e2) - w.mass[i]);
       }
     };
-    auto excess = [&](double gamma) {
+    auto body_added = [&] {
+      double dm = 0;
+      for (int i = body.node_begin; i < body.node_end; ++i) dm += added[i];
+      return dm;
+    };
+    // ω(γ)/ω_e on the combined bound, the smaller of the mass-split and Weyl bounds as
+    // critical_step.
+    auto ratio = [&](double gamma) {
       set_added(gamma);
       double gershgorin = 0;
       for (int i = body.node_begin; i < body.node_end; ++i) {
@@ -217,21 +232,38 @@ double scale_contact_mass(World& w, double factor) {
       }
       const fem::ElementStep both = fem::element_critical_step(e, springs, added);
       const double omega2 = std::min(l.omega_e2 + gershgorin, both.omega_max * both.omega_max);
-      return std::sqrt(omega2 / l.omega_e2) - factor;
+      return std::sqrt(omega2 / l.omega_e2);
     };
+    auto excess = [&](double gamma) { return ratio(gamma) - factor; };
     const double g_hi = excess(l.gamma_hi);
-    if (g_hi <= 0 || !(l.gamma_hi > l.gamma_lo)) {
-      set_added(std::max(l.gamma_hi, l.gamma_lo));
-      continue;
+    double gamma = std::max(l.gamma_hi, l.gamma_lo);
+    if (g_hi > 0 && l.gamma_hi > l.gamma_lo) {
+      const double g_lo = excess(l.gamma_lo);
+      gamma = largest_meeting(excess, l.gamma_lo, l.gamma_hi, std::min(g_lo, 0.0), g_hi,
+                              kMeetTolerance * factor);
     }
-    const double g_lo = excess(l.gamma_lo);
-    set_added(largest_meeting(excess, l.gamma_lo, l.gamma_hi, std::min(g_lo, 0.0), g_hi,
-                              kMeetTolerance * factor));
-    double dm = 0;
-    for (int i = body.node_begin; i < body.node_end; ++i) dm += added[i];
-    largest = std::max(largest, dm / body.mass);
+    set_added(gamma);
+    // The budget: the mass added grows as γ falls (each node's c_i/(γ ω_e²) − m_i, where
+    // positive), so the least γ within it is found by bisection in log γ on the nodes alone (no
+    // step bound per try); then one bound for the factor it meets. γ never falls below the γ of
+    // kLeastContactFactor by Weyl's sum (factor² − 1), nor rises above the factor asked's.
+    if (max_added > 0 && body_added() <= max_added * body.mass) {
+      double lo = kLeastContactFactor * kLeastContactFactor - 1, hi = gamma;
+      set_added(lo);
+      if (body_added() <= max_added * body.mass) {
+        hi = lo;
+      } else {
+        for (int k = 0; k < 60 && hi > lo * (1 + 1e-12); ++k) {
+          const double mid = std::sqrt(lo * hi);
+          set_added(mid);
+          (body_added() <= max_added * body.mass ? hi : lo) = mid;
+        }
+      }
+      out.factor = std::min(out.factor, ratio(hi));  // sets the added mass at hi
+    }
+    out.largest = std::max(out.largest, body_added() / body.mass);
   }
-  if (largest == 0) return 0;
+  if (out.largest == 0) return out;
   w.added_mass = added;
   for (std::size_t i = 0; i < n; ++i) {
     if (added[i] > 0) {
@@ -239,7 +271,17 @@ double scale_contact_mass(World& w, double factor) {
       w.inv_mass[i] = 1.0 / w.mass[i];
     }
   }
-  return largest;
+  return out;
+}
+
+}  // namespace
+
+double scale_contact_mass(World& w, double factor) {
+  return scale_contact_mass_impl(w, factor, 0).largest;
+}
+
+double scale_contact_mass_within(World& w, double factor, double max_added) {
+  return scale_contact_mass_impl(w, factor, max_added).factor;
 }
 
 }  // namespace asperity::fdem

@@ -75,6 +75,10 @@ struct ContactDef {
   // (run/run_fdem.cpp); 0 (here the default): p as asked.
   double max_contact_factor = 0;
   ContactStepFix contact_step_fix = ContactStepFix::penalty;  // how (above)
+  // mass only, > 0: the factor is lowered from max_contact_factor towards 1 as far as the mass
+  // added stays within this fraction of every body's mass (scale_contact_mass_within); 0: the
+  // factor as given.
+  double max_added_mass = 0;
 };
 
 struct WorldDef {
@@ -161,6 +165,9 @@ struct World {
   std::vector<double> tet_penalty_scale;
   // Per node, the lumped mass scale_contact_mass added (kg, already in `mass`); empty: none.
   std::vector<double> added_mass;
+  // The contact factor the world meets: ContactDef::max_contact_factor, or the lower one that
+  // scale_contact_mass_within found (0: none).
+  double contact_factor = 0;
   double friction = 0;
   ContactLaw law = ContactLaw::potential;
   double kv = 0;  // N/m³

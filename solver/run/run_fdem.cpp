@@ -165,6 +165,7 @@ Built build(const scene::SceneDef& s) {
       out.def.contact.contact_step_fix = fdem::ContactStepFix::mass;
       break;
   }
+  out.def.contact.max_added_mass = s.contact.max_added_mass.value_or(0.0);
   // Coulomb μ: the scene's, else the smallest of the bodies' materials (as pair_friction does
   // for a pair).
   out.def.contact.friction = s.contact.friction.value_or(friction);
@@ -352,7 +353,7 @@ RunResult run_fdem(const scene::SceneDef& s, const RunOptions& options) {
     j["penalty_alpha_asked"] = s.contact.penalty ? J() : J(built.def.contact.alpha);
     // What met max_contact_factor: the least face penalty scale (face-penalty) and the mass
     // added to the surface nodes over the moving bodies' mass (mass).
-    j["max_contact_factor"] = built.def.contact.max_contact_factor;
+    j["max_contact_factor"] = w.contact_factor;
     double least = 1;
     for (const double x : w.tet_penalty_scale) least = std::min(least, x);
     j["penalty_scale_min"] = least;

@@ -178,6 +178,17 @@ ContactDef parse_contact(const JsonReader& c) {
       c.fail("contact_factor_by", "unknown \"" + by + "\"; expected face-penalty, penalty or mass");
     }
   }
+  if (c.has("max_added_mass")) {
+    if (out.contact_factor_by != ContactFactorBy::mass) {
+      c.fail("max_added_mass", "only contact_factor_by \"mass\" takes max_added_mass");
+    }
+    // No factor (0, or a penalty given without one: run/run_fdem.cpp) leaves nothing to lower.
+    if (out.max_contact_factor ? *out.max_contact_factor == 0 : out.penalty || out.penalty_alpha) {
+      c.fail("max_added_mass", "needs a max_contact_factor above 0 (the factor it lowers)");
+    }
+    // A fraction of the body's mass: above 0, and below 1 (a body twice its mass is no budget).
+    out.max_added_mass = c.in_range("max_added_mass", 0.0, 1.0, true, true);
+  }
   if (c.has("friction")) out.friction = c.in_range("friction", 0.0, 1e3, false, false);
   if (c.has("restitution"))
     out.restitution = c.in_range("restitution", kMinRestitution, 1.0, false, false);

@@ -107,6 +107,9 @@ struct ContactDef {
   // (fdem::ContactStepFix; docs/physics.md, "Time step").
   std::optional<double> max_contact_factor;
   ContactFactorBy contact_factor_by = ContactFactorBy::face_penalty;
+  // potential, contact_factor_by mass: the factor lowered from max_contact_factor towards 1 as far
+  // as the mass added stays within this fraction of the body's (fdem::scale_contact_mass_within).
+  std::optional<double> max_added_mass;
   std::optional<double> kv;           // volume-linear: volumetric stiffness, N/m³
   std::optional<double> friction;     // overrides the materials' pair friction
   std::optional<double> restitution;  // overrides the materials' pair restitution

@@ -45,6 +45,7 @@ inline constexpr std::string_view kContact[] = {"law",
                                                 "penalty_alpha",
                                                 "max_contact_factor",
                                                 "contact_factor_by",
+                                                "max_added_mass",
                                                 "kv",
                                                 "friction",
                                                 "restitution"};

@@ -77,6 +77,7 @@ OJson contact_json(const ContactDef& c) {
       if (by == c.contact_factor_by) j["contact_factor_by"] = std::string(name);
     }
   }
+  put("max_added_mass", c.max_added_mass);
   put("kv", c.kv);
   put("friction", c.friction);
   put("restitution", c.restitution);

@@ -9,6 +9,7 @@
 #include <Eigen/Eigenvalues>
 
 #include "scenes/fdem_scenes.hpp"
+#include "solver/fdem/contact_step.hpp"
 #include "solver/fem/neo_hookean_tet.hpp"
 
 namespace asperity::fdem {
@@ -153,6 +154,44 @@ TEST(ContactStep, EachFixMeetsTheFactorAndStaysRigorous) {
     EXPECT_GE(met, factor * 0.98 * (1 - 1e-9));
     EXPECT_LE(c.critical, 2.0 / exact_omega(w, 0) * (1 + 1e-12));
   }
+}
+
+// Contact mass within a budget (scale_contact_mass_within, scene key contact.max_added_mass) on
+// the same coarse ball: a budget below what the factor asked adds changes nothing (the factor
+// asked is the most the contact may pull the step; the masses equal scale_contact_mass's to the
+// bit); a budget twice that lowers the factor, adds the budget itself (the bisection in log γ
+// runs to 1e-12 of γ, and the mass added moves with γ continuously, so to 1e-6 of it) and never
+// more, and the predicted step is still rigorous (≤ 2/ω_exact with the scaled masses).
+TEST(ContactStep, MassWithinABudgetLowersTheFactorAndKeepsTheBudget) {
+  WorldDef def = scenes::ball_on_block(0.1, 3, 1.0, BodyKind::deformable, scenes::rubbery(), 0.002);
+  const double element = critical_step(make_world(def)).element;
+  def.contact.max_contact_factor = 1.5;
+  def.contact.contact_step_fix = ContactStepFix::mass;
+  const World asked = make_world(def);
+  const double body_mass = asked.bodies[0].mass;
+  double added_asked = 0;
+  for (const double x : asked.added_mass) added_asked += x;
+  ASSERT_GT(added_asked, 0);
+  def.contact.max_added_mass = 0.5 * added_asked / body_mass;
+  const World under = make_world(def);
+  EXPECT_EQ(under.contact_factor, 1.5);
+  EXPECT_EQ(under.mass, asked.mass);
+  def.contact.max_added_mass = 2 * added_asked / body_mass;
+  const World w = make_world(def);
+  double added = 0;
+  for (const double x : w.added_mass) added += x;
+  std::printf("asked 1.5 adds %.4g of the body; budget %.4g: factor %.4g, adds %.4g\n",
+              added_asked / body_mass, def.contact.max_added_mass, w.contact_factor,
+              added / body_mass);
+  EXPECT_LT(w.contact_factor, 1.5);
+  EXPECT_GE(w.contact_factor, kLeastContactFactor);
+  EXPECT_LE(added, 2 * added_asked * (1 + 1e-12));
+  EXPECT_GE(added, 2 * added_asked * (1 - 1e-6));
+  const CriticalStep c = critical_step(w);
+  EXPECT_LE(c.critical, 2.0 / exact_omega(w, 0) * (1 + 1e-12));
+  // The factor it reports is the one it meets on the predicted step (within the 2 % the search
+  // for the asked factor stops at, as above).
+  EXPECT_NEAR(element / c.critical, w.contact_factor, 0.02 * w.contact_factor);
 }
 
 // Two equal coarse balls head-on at ±v (momentum zero), the contact factor met by each fix. The

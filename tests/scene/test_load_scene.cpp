@@ -331,6 +331,28 @@ TEST(LoadScene, ContactFactorKeysAreChecked) {
       "factor-law",
       edit("{\"law\": \"hertz-mindlin\"}", "{\"law\": \"hertz\", \"max_contact_factor\": 2}"));
   EXPECT_NE(law.find("only the potential law takes max_contact_factor"), std::string::npos) << law;
+  // max_added_mass: only with contact mass and a factor to lower, a fraction in (0, 1).
+  const std::string budget_by = error_of(
+      "budget-by",
+      edit("{\"law\": \"hertz-mindlin\"}", "{\"law\": \"potential\", \"max_added_mass\": 1e-4}"));
+  EXPECT_NE(budget_by.find("contact.max_added_mass: only contact_factor_by \"mass\""),
+            std::string::npos)
+      << budget_by;
+  const std::string budget_factor =
+      error_of("budget-factor", edit("{\"law\": \"hertz-mindlin\"}",
+                                     "{\"law\": \"potential\", \"contact_factor_by\": \"mass\", "
+                                     "\"max_contact_factor\": 0, \"max_added_mass\": 1e-4}"));
+  EXPECT_NE(budget_factor.find("contact.max_added_mass: needs a max_contact_factor above 0"),
+            std::string::npos)
+      << budget_factor;
+  for (const char* value : {"0", "1", "-1e-4"}) {
+    const std::string range =
+        error_of("budget-range", edit("{\"law\": \"hertz-mindlin\"}",
+                                      std::string("{\"law\": \"potential\", \"contact_factor_by\": "
+                                                  "\"mass\", \"max_added_mass\": ") +
+                                          value + "}"));
+    EXPECT_NE(range.find("contact.max_added_mass: must lie in (0, 1)"), std::string::npos) << range;
+  }
 }
 
 // A mesh body's element_size (issue 11): not positive is refused where the scene is read; one

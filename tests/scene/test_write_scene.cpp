@@ -86,6 +86,7 @@ void expect_same(const SceneDef& a, const SceneDef& b, const std::string& where)
   EXPECT_EQ(c.penalty_alpha, d.penalty_alpha) << where;
   EXPECT_EQ(c.max_contact_factor, d.max_contact_factor) << where;
   EXPECT_EQ(c.contact_factor_by, d.contact_factor_by) << where;
+  EXPECT_EQ(c.max_added_mass, d.max_added_mass) << where;
   EXPECT_EQ(c.kv, d.kv) << where;
   EXPECT_EQ(c.friction, d.friction) << where;
   EXPECT_EQ(c.restitution, d.restitution) << where;

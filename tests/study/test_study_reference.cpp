@@ -53,13 +53,23 @@ TEST(StudyReference, FinestIsTheDefaultAndSourceIsPartOfTheDefinition) {
   const nlohmann::ordered_json j = definition_json(source);
   EXPECT_EQ(j["reference"], "source");
   EXPECT_EQ(j["reference_patch_check"], true);
-  // Contact mass only when asked, and only then in study.json (folders run before keep theirs).
-  EXPECT_FALSE(source.source_reference.contact_mass);
-  EXPECT_FALSE(j.contains("reference_contact_mass"));
-  const StudyDef mass =
-      load_study(study_file("mass", R"(, "reference": "source", "reference_contact_mass": true)"));
-  EXPECT_TRUE(mass.source_reference.contact_mass);
-  EXPECT_EQ(definition_json(mass)["reference_contact_mass"], true);
+  // Contact mass within a budget of 1e-4 by default, both in study.json: a folder run with
+  // face-penalty, or with mass and no budget, has other levels and is refused.
+  EXPECT_TRUE(source.source_reference.contact_mass);
+  EXPECT_EQ(source.source_reference.added_mass, 1e-4);
+  EXPECT_EQ(j["reference_contact_mass"], true);
+  EXPECT_EQ(j["reference_added_mass"], 1e-4);
+  const StudyDef face =
+      load_study(study_file("face", R"(, "reference": "source", "reference_contact_mass": false)"));
+  EXPECT_FALSE(face.source_reference.contact_mass);
+  EXPECT_EQ(definition_json(face)["reference_contact_mass"], false);
+  EXPECT_FALSE(definition_json(face).contains("reference_added_mass"));
+  const StudyDef unbudgeted =
+      load_study(study_file("unbudgeted", R"(, "reference": "source", "reference_added_mass": 0)"));
+  EXPECT_EQ(definition_json(unbudgeted)["reference_added_mass"], 0);
+  EXPECT_NE(first_difference(nlohmann::json::parse(definition_json(unbudgeted).dump()),
+                             nlohmann::json::parse(j.dump())),
+            "");
   // Another reference is another study: a folder of the one refuses the other.
   EXPECT_NE(first_difference(nlohmann::json::parse(definition_json(finest).dump()),
                              nlohmann::json::parse(j.dump())),
@@ -75,7 +85,12 @@ TEST(StudyReference, BadValuesAreRefusedNamingFileAndKey) {
       {R"(, "reference": "source", "reference_elements_across": 0.5)", "reference_elements_across"},
       {R"(, "reference": "finest", "reference_elements_across": 3)", "reference_elements_across"},
       {R"(, "reference_contact_mass": true)", "reference_contact_mass"},
-      {R"(, "reference": "source", "reference_contact_mass": 1)", "reference_contact_mass"}};
+      {R"(, "reference": "source", "reference_contact_mass": 1)", "reference_contact_mass"},
+      {R"(, "reference_added_mass": 1e-4)", "reference_added_mass"},
+      {R"(, "reference": "source", "reference_added_mass": -1e-4)", "reference_added_mass"},
+      {R"(, "reference": "source", "reference_added_mass": 1)", "reference_added_mass"},
+      {R"(, "reference": "source", "reference_contact_mass": false, "reference_added_mass": 1e-4)",
+       "reference_added_mass"}};
   for (const auto& [extra, key] : bad) {
     try {
       load_study(study_file("bad", extra));
