@@ -489,7 +489,7 @@ nlohmann::ordered_json definition_json(const StudyDef& def) {
     out["reference_patch_check"] = def.source_reference.patch_check;
     out["reference_elements_across"] = def.source_reference.elements_across;
     // Both always: a folder run with another contact fix or budget (face-penalty, the default
-    // before 8 December 2026; mass without a budget) has other levels and is refused.
+    // until 7 December 2026; mass without a budget) has other levels and is refused.
     out["reference_contact_mass"] = def.source_reference.contact_mass;
     if (def.source_reference.contact_mass) {
       out["reference_added_mass"] = def.source_reference.added_mass;

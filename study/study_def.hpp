@@ -86,7 +86,7 @@ struct SourceReferenceDef {
   // contact mass (contact_factor_by "mass") instead of the refined cases' face penalty. At a
   // sharp strike point face-penalty lowers the contact faces' penalty to a few % of α, and the
   // levels then ended unstable on 2 of 8 particle-orientations (docs/study.md, "The wider study
-  // against the particle"); false runs them as the studies committed before 8 December 2026.
+  // against the particle"); false runs them as the studies committed until 7 December 2026.
   bool contact_mass = true;
   // "reference_added_mass": with contact mass, the factor is lowered below the refinement's as
   // far as the mass added stays within this fraction of the body's (scene key
