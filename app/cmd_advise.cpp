@@ -11,6 +11,7 @@
 #include <thread>
 
 #include "app/cli_numbers.hpp"
+#include "app/cli_options.hpp"
 #include "app/commands.hpp"
 #include "app/out_folder.hpp"
 #include "solver/core/error.hpp"
@@ -30,6 +31,18 @@ namespace fs = std::filesystem;
 // (rock_04) per particle and orientation on the 2-core machine, 6 December 2026 (docs/study.md,
 // "The source reference"): a budget below it cannot finish one orientation.
 constexpr double kReferenceCpuMin = 110.0;
+
+// `asperity advise`: its name and its help paragraph.
+constexpr CommandText kAdvise{
+    .name = "advise",
+    .about =
+        "Advice on one particle: its mesh studied at K random orientations (fem, rigid, sphere, "
+        "sphere-local at 100-2000 triangles, fem refined at the strike point), each against its "
+        "own reference; the cheapest model, resolution and element size within the tolerance at "
+        "every orientation, with its error (median, worst), the reference's uncertainty and the "
+        "CPU per impact, and the same for 2, 5 and 10 % on every metric. Resumable; writes "
+        "DIR/advice.json, DIR/advice.md and the study's folder (docs/study.md)",
+};
 
 struct AdviseArgs {
   fs::path mesh, out;
@@ -133,18 +146,9 @@ int advise_particle(const AdviseArgs& args) {
 }  // namespace
 
 void add_advise_command(CLI::App& app, Action& action) {
-  auto args = std::make_shared<AdviseArgs>();
-  auto* cmd = app.add_subcommand(
-      "advise",
-      "Advice on one particle: its mesh studied at K random orientations (fem, rigid, sphere, "
-      "sphere-local at 100-2000 triangles, fem refined at the strike point), each against its "
-      "own reference; the cheapest model, resolution and element size within the tolerance at "
-      "every orientation, with its error (median, worst), the reference's uncertainty and the "
-      "CPU per impact, and the same for 2, 5 and 10 % on every metric. Resumable; writes "
-      "DIR/advice.json, DIR/advice.md and the study's folder (docs/study.md)");
+  const auto [cmd, args] = add_command<AdviseArgs>(app, action, kAdvise, advise_particle);
   cmd->add_option("mesh", args->mesh, "The particle's surface (STL, OBJ, PLY, OFF)")->required();
-  cmd->add_option("--tolerance", args->tolerance, "Relative tolerance, e.g. 5% or 0.05")
-      ->capture_default_str();
+  add_tolerance(*cmd, args->tolerance);
   cmd->add_option("--metric", args->metric, "peak_force, impulse or contact_duration")
       ->check(CLI::IsMember({"peak_force", "impulse", "contact_duration"}))
       ->capture_default_str();
@@ -158,11 +162,9 @@ void add_advise_command(CLI::App& app, Action& action) {
                   "none)");
   cmd->add_option("--scale", args->scale, "Multiplies the file's coordinates (0.001: mm)")
       ->capture_default_str();
-  cmd->add_option("--out", args->out, "Output folder")->required();
-  cmd->add_option("-j,--jobs", args->jobs, "Worker threads (default: every core)")
-      ->check(whole_number(0, 4096));
-  cmd->add_flag("-q,--quiet", args->quiet, "Only errors on stderr");
-  cmd->callback([args, &action] { action = [args] { return advise_particle(*args); }; });
+  add_out_folder(*cmd, args->out);
+  add_jobs(*cmd, args->jobs, "Worker threads (default: every core)");
+  add_quiet(*cmd, args->quiet, "Only errors on stderr");
 }
 
 }  // namespace asperity::app

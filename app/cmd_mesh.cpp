@@ -7,6 +7,7 @@
 #include <memory>
 
 #include "app/cli_numbers.hpp"
+#include "app/cli_options.hpp"
 #include "app/commands.hpp"
 #include "app/out_folder.hpp"
 #include "solver/core/error.hpp"
@@ -17,6 +18,14 @@ namespace asperity::app {
 namespace {
 namespace fs = std::filesystem;
 
+// `asperity mesh`: its name and its help paragraph.
+constexpr CommandText kMesh{
+    .name = "mesh",
+    .about =
+        "Check a surface mesh (STL, OBJ, PLY, OFF), simplify it to exactly N triangles and "
+        "tetrahedralize it keeping them: writes DIR/surface.off, DIR/tets.vtk, DIR/mesh.json",
+};
+
 struct MeshArgs {
   fs::path input, out;
   long faces = 0;
@@ -24,7 +33,7 @@ struct MeshArgs {
   double quality = geometry::TetOptions{}.radius_edge_ratio;
   double min_dihedral = 0;
   double element_size = 0;
-  bool element_size_given = false;
+  const CLI::Option* element_size_option = nullptr;  // count() > 0: --element-size given
   double contact_patch = 0;
   bool no_tets = false, quiet = false;
 };
@@ -37,7 +46,7 @@ int cmd_mesh(const MeshArgs& a) {
   options.tetrahedralize = !a.no_tets;
   options.tet.radius_edge_ratio = a.quality;
   options.tet.min_dihedral_deg = a.min_dihedral;
-  if (a.element_size_given) {
+  if (a.element_size_option->count() > 0) {
     if (!(a.element_size > 0)) {  // NaN too
       throw InputError(a.input.string() + ": --element-size: " + fmt(a.element_size) +
                        " is not a positive length in metres");
@@ -46,7 +55,7 @@ int cmd_mesh(const MeshArgs& a) {
     options.element_size_key = a.input.string() + ": --element-size";
   }
   check_out_folder(a.out);
-  if (!a.quiet && a.element_size_given) {
+  if (!a.quiet && a.element_size_option->count() > 0) {
     // A fine element size meshes for minutes with nothing else to show (issue 31, class 11).
     const double budget = options.tet.time_budget_s;
     options.on_tetrahedralize = [&a, budget](double tets) {
@@ -76,17 +85,13 @@ int cmd_mesh(const MeshArgs& a) {
 }  // namespace
 
 void add_mesh_command(CLI::App& app, Action& action) {
-  auto args = std::make_shared<MeshArgs>();
-  auto* cmd = app.add_subcommand(
-      "mesh",
-      "Check a surface mesh (STL, OBJ, PLY, OFF), simplify it to exactly N triangles and "
-      "tetrahedralize it keeping them: writes DIR/surface.off, DIR/tets.vtk, DIR/mesh.json");
+  const auto [cmd, args] = add_command<MeshArgs>(app, action, kMesh, cmd_mesh);
   cmd->add_option("input", args->input, "Surface mesh file (.stl, .obj, .ply, .off)")->required();
   cmd->add_option("--faces", args->faces,
                   "Exact triangle count of the result: even, at least 4, at most the input's "
                   "(default: keep)")
       ->check(whole_number(0, 10'000'000));
-  cmd->add_option("--out", args->out, "Output folder")->required();
+  add_out_folder(*cmd, args->out);
   cmd->add_option("--scale", args->scale,
                   "Factor to metres for every coordinate (1e-3 for millimetres)")
       ->check(real_number(0, 1e6, true));
@@ -96,7 +101,7 @@ void add_mesh_command(CLI::App& app, Action& action) {
   cmd->add_option("--min-dihedral", args->min_dihedral,
                   "TetGen smallest dihedral angle asked for, degrees")
       ->check(real_number(0, 70, false));
-  auto* element_size = cmd->add_option(
+  args->element_size_option = cmd->add_option(
       "--element-size", args->element_size,
       "Target tetrahedron edge length, m (after --scale): the surface triangles are "
       "bisected in their own planes to it and the interior filled with quality "
@@ -107,11 +112,7 @@ void add_mesh_command(CLI::App& app, Action& action) {
                   "particle (a contact-local surface, docs/geometry.md)")
       ->check(real_number(0, 1e6, false));
   cmd->add_flag("--no-tets", args->no_tets, "Surface only: no tetrahedralization");
-  cmd->add_flag("-q,--quiet", args->quiet, "No summary line on stderr");
-  cmd->callback([args, element_size, &action] {
-    args->element_size_given = element_size->count() > 0;
-    action = [args] { return cmd_mesh(*args); };
-  });
+  add_quiet(*cmd, args->quiet, "No summary line on stderr");
 }
 
 }  // namespace asperity::app

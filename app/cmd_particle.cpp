@@ -9,6 +9,7 @@
 #include <vector>
 
 #include "app/cli_numbers.hpp"
+#include "app/cli_options.hpp"
 #include "app/commands.hpp"
 #include "app/out_folder.hpp"
 #include "solver/core/error.hpp"
@@ -88,25 +89,20 @@ void add_particle_command(CLI::App& app, Action& action) {
       ->check(whole_number(0, std::numeric_limits<std::uint64_t>::max()));
   cmd->add_option("--out", args->out, "Output file (or folder with --set)")->required();
   cmd->add_option("--set", args->set, "A particle set (JSON, e.g. data/particles/set.json)");
-  cmd->add_option("--size", args->def.size, "Equivalent-sphere diameter, m")
-      ->check(finite_number())
-      ->capture_default_str();
-  cmd->add_option("--elongation", args->def.elongation, "b/a of the base ellipsoid, (0, 1]")
-      ->check(finite_number())
-      ->capture_default_str();
-  cmd->add_option("--flatness", args->def.flatness, "c/b of the base ellipsoid, (0, 1]")
-      ->check(finite_number())
-      ->capture_default_str();
-  cmd->add_option("--angularity", args->def.angularity, "Planar cuts: 0 none to 1 many and deep")
-      ->check(finite_number())
-      ->capture_default_str();
-  cmd->add_option("--roughness", args->def.roughness, "Multi-scale surface noise, 0 to 1")
-      ->check(finite_number())
-      ->capture_default_str();
+  // A shape number parses as any finite value; particle_def_problem checks its range when the
+  // command runs, with the message a set file's entry gets, and --help shows ParticleDef's default.
+  const auto shape_number = [cmd](const std::string& flag, double& value, const std::string& help) {
+    cmd->add_option(flag, value, help)->check(finite_number())->capture_default_str();
+  };
+  shape_number("--size", args->def.size, "Equivalent-sphere diameter, m");
+  shape_number("--elongation", args->def.elongation, "b/a of the base ellipsoid, (0, 1]");
+  shape_number("--flatness", args->def.flatness, "c/b of the base ellipsoid, (0, 1]");
+  shape_number("--angularity", args->def.angularity, "Planar cuts: 0 none to 1 many and deep");
+  shape_number("--roughness", args->def.roughness, "Multi-scale surface noise, 0 to 1");
   cmd->add_option("--faces", args->def.faces, "Triangle count (rounded to 20 n^2)")
       ->check(whole_number(0, 2'000'000))
       ->capture_default_str();
-  cmd->add_flag("-q,--quiet", args->quiet, "No summary line on stderr");
+  add_quiet(*cmd, args->quiet, "No summary line on stderr");
   cmd->callback([args, cmd, &action] {
     if (!args->set.empty() && cmd->count("--seed") > 0)
       throw CLI::ValidationError("--set", "give --seed or --set, not both");

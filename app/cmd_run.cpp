@@ -3,6 +3,7 @@
 #include <iostream>
 #include <memory>
 
+#include "app/cli_options.hpp"
 #include "app/commands.hpp"
 #include "app/out_folder.hpp"
 #include "solver/core/error.hpp"
@@ -16,14 +17,22 @@ namespace asperity::app {
 namespace {
 namespace fs = std::filesystem;
 
-struct Args {
+// `asperity run`: its name and its help paragraph.
+constexpr CommandText kRun{
+    .name = "run",
+    .about =
+        "Run one scene: writes DIR/summary.json, DIR/force.csv, "
+        "DIR/energy.csv (and DIR/vtk/run.pvd with --vtk-every)",
+};
+
+struct RunArgs {
   fs::path scene, out;
   bool allow_unsafe_dt = false, quiet = false;
   int vtk_every = 0;  // 0: the scene's output.vtk_every
   bool vtk_ascii = false;
 };
 
-int cmd_run(const Args& a) {
+int cmd_run(const RunArgs& a) {
   const scene::SceneDef s = scene::load_scene(a.scene);
   check_out_folder(a.out);
   // An earlier run's outputs in the same folder would pass for this run's if it is interrupted
@@ -63,23 +72,18 @@ int cmd_run(const Args& a) {
 }  // namespace
 
 void add_run_command(CLI::App& app, Action& action) {
-  auto args = std::make_shared<Args>();
-  auto* run =
-      app.add_subcommand("run",
-                         "Run one scene: writes DIR/summary.json, DIR/force.csv, DIR/energy.csv "
-                         "(and DIR/vtk/run.pvd with --vtk-every)");
+  const auto [run, args] = add_command<RunArgs>(app, action, kRun, cmd_run);
   run->add_option("scene", args->scene, "Scene file (JSON, see docs/scenes.md)")->required();
-  run->add_option("--out", args->out, "Output folder")->required();
+  add_out_folder(*run, args->out);
   run->add_flag("--allow-unsafe-dt", args->allow_unsafe_dt,
                 "Run a given dt even above the predicted critical step");
-  run->add_flag("-q,--quiet", args->quiet, "No progress or summary line on stderr");
+  add_quiet(*run, args->quiet, "No progress or summary line on stderr");
   run->add_option("--vtk-every", args->vtk_every,
                   "ParaView frames every N steps, at the peak force and at the end: "
                   "DIR/vtk/run.pvd (overrides the scene's output.vtk_every)")
       ->check(CLI::PositiveNumber);
   run->add_flag("--vtk-ascii", args->vtk_ascii,
                 "Frames in ASCII instead of appended base64 (about 2.3x larger)");
-  run->callback([args, &action] { action = [args] { return cmd_run(*args); }; });
 }
 
 }  // namespace asperity::app

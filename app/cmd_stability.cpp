@@ -5,6 +5,7 @@
 #include <string>
 
 #include "app/cli_numbers.hpp"
+#include "app/cli_options.hpp"
 #include "app/commands.hpp"
 #include "app/out_folder.hpp"
 #include "solver/core/error.hpp"
@@ -13,21 +14,58 @@
 
 namespace asperity::app {
 
-void add_stability_command(CLI::App& app, Action& action) {
-  struct Args {
-    std::filesystem::path scene, out;
-    std::string factors;
-    CLI::Option* factors_option = nullptr;
-    double reference_factor = 0;
-    bool quiet = false;
+namespace {
+
+// `asperity stability`: its name and its help paragraph.
+constexpr CommandText kStability{
+    .name = "stability",
+    .about =
+        "Sweep the time step as multiples of the predicted critical step: writes DIR/stability.csv "
+        "and DIR/summary.json (dt_critical_predicted, dt_stable_max_measured)",
+};
+
+struct StabilityArgs {
+  std::filesystem::path scene, out;
+  std::string factors;
+  CLI::Option* factors_option = nullptr;
+  double reference_factor = 0;
+  bool quiet = false;
+};
+
+int sweep(const StabilityArgs& a) {
+  // Validate everything before running anything.
+  const std::vector<double> factors = a.factors_option->count() == 0
+                                          ? run::default_stability_factors()
+                                          : run::parse_factors(a.factors, "--factors");
+  const scene::SceneDef s = scene::load_scene(a.scene);
+  check_out_folder(a.out);
+  const auto progress = [&](const run::StabilityRow& r, int k, int n) {
+    if (!a.quiet) {
+      std::fprintf(
+          stderr,
+          "[%d/%d] factor %-6g dt %-12.4g %-10s drift %.3g  peak error %+.2e  (%.2f s CPU)\n", k, n,
+          r.factor, r.dt, r.status.c_str(), r.energy_drift, r.peak_force_error, r.cpu_seconds);
+    }
   };
-  auto args = std::make_shared<Args>();
-  auto* cmd = app.add_subcommand(
-      "stability",
-      "Sweep the time step as multiples of the predicted critical step: writes DIR/stability.csv "
-      "and DIR/summary.json (dt_critical_predicted, dt_stable_max_measured)");
+  const run::StabilityResult result = run::stability_sweep(
+      s, factors, a.reference_factor > 0 ? std::optional<double>(a.reference_factor) : std::nullopt,
+      progress);
+  run::write_stability(result, a.out);
+  if (!a.quiet) {
+    std::fprintf(stderr, "predicted %.4g s, measured stable up to %s -> %s\n",
+                 result.summary["dt_critical_predicted"].get<double>(),
+                 result.summary["dt_stable_max_measured"].dump().c_str(),
+                 (a.out / "stability.csv").string().c_str());
+  }
+  return kExitOk;
+}
+
+}  // namespace
+
+void add_stability_command(CLI::App& app, Action& action) {
+  const auto [cmd, args] = add_command<StabilityArgs>(app, action, kStability, sweep);
   cmd->add_option("scene", args->scene, "Scene file (JSON)")->required();
-  cmd->add_option("--out", args->out, "Output folder")->required();
+  add_out_folder(*cmd, args->out);
   args->factors_option =
       cmd->add_option("--factors", args->factors,
                       "Comma-separated multiples of the predicted critical step "
@@ -38,38 +76,7 @@ void add_stability_command(CLI::App& app, Action& action) {
          "smaller of the automatic step's dt_safety and an eighth of the smallest factor); at most "
          "1, the predicted critical step: a reference beyond it may be unstable")
       ->check(real_number(0, 1, true));
-  cmd->add_flag("-q,--quiet", args->quiet, "Only errors on stderr");
-  cmd->callback([args, &action] {
-    action = [args] {
-      // Validate everything before running anything.
-      const std::vector<double> factors = args->factors_option->count() == 0
-                                              ? run::default_stability_factors()
-                                              : run::parse_factors(args->factors, "--factors");
-      const scene::SceneDef s = scene::load_scene(args->scene);
-      check_out_folder(args->out);
-      const auto progress = [&](const run::StabilityRow& r, int k, int n) {
-        if (!args->quiet) {
-          std::fprintf(
-              stderr,
-              "[%d/%d] factor %-6g dt %-12.4g %-10s drift %.3g  peak error %+.2e  (%.2f s CPU)\n",
-              k, n, r.factor, r.dt, r.status.c_str(), r.energy_drift, r.peak_force_error,
-              r.cpu_seconds);
-        }
-      };
-      const run::StabilityResult result = run::stability_sweep(
-          s, factors,
-          args->reference_factor > 0 ? std::optional<double>(args->reference_factor) : std::nullopt,
-          progress);
-      run::write_stability(result, args->out);
-      if (!args->quiet) {
-        std::fprintf(stderr, "predicted %.4g s, measured stable up to %s -> %s\n",
-                     result.summary["dt_critical_predicted"].get<double>(),
-                     result.summary["dt_stable_max_measured"].dump().c_str(),
-                     (args->out / "stability.csv").string().c_str());
-      }
-      return kExitOk;
-    };
-  });
+  add_quiet(*cmd, args->quiet, "Only errors on stderr");
 }
 
 }  // namespace asperity::app

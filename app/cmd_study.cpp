@@ -7,7 +7,7 @@
 #include <memory>
 #include <optional>
 
-#include "app/cli_numbers.hpp"
+#include "app/cli_options.hpp"
 #include "app/commands.hpp"
 #include "app/out_folder.hpp"
 #include "cluster/world.hpp"
@@ -18,6 +18,25 @@
 
 namespace asperity::app {
 namespace {
+
+// `asperity study`: its name and its help paragraph.
+constexpr CommandText kStudy{
+    .name = "study",
+    .about =
+        "Particle-geometry study: particles x resolutions x models (fem, rigid, rigid-penalty, "
+        "sphere, sphere-local) x placements, each striking a rigid block, fem also at element "
+        "sizes refined at the strike point (the key \"refinement\"). The key \"reference\" names "
+        "what every error is measured against: \"finest\" (default), the Richardson limit of the "
+        "fem sequence at the finest resolution, with its estimated error; or \"source\", the "
+        "particle itself: its source surface kept around the strike point, refined there in 3 "
+        "levels (\"reference_elements_across\", 3: the finest level's elements across Hertz's "
+        "contact radius; \"reference_patch_check\": also on the doubled patch), their Richardson "
+        "limit. Resumable (finished cases are kept). Writes DIR/cases/, "
+        "DIR/cases.csv, DIR/classification.csv, DIR/guidelines.csv, DIR/answer.csv (what to use "
+        "for "
+        "2, 5 and 10 %) and DIR/study_summary.json. "
+        "Under mpirun or srun the cases are spread over the ranks (docs/cluster.md)",
+};
 
 struct StudyArgs {
   std::filesystem::path study, out;
@@ -110,27 +129,12 @@ int run(const StudyArgs& args) {
 }  // namespace
 
 void add_study_command(CLI::App& app, Action& action) {
-  auto args = std::make_shared<StudyArgs>();
-  auto* cmd = app.add_subcommand(
-      "study",
-      "Particle-geometry study: particles x resolutions x models (fem, rigid, rigid-penalty, "
-      "sphere, sphere-local) x placements, each striking a rigid block, fem also at element "
-      "sizes refined at the strike point (the key \"refinement\"). The key \"reference\" names "
-      "what every error is measured against: \"finest\" (default), the Richardson limit of the "
-      "fem sequence at the finest resolution, with its estimated error; or \"source\", the "
-      "particle itself: its source surface kept around the strike point, refined there in 3 "
-      "levels (\"reference_elements_across\", 3: the finest level's elements across Hertz's "
-      "contact radius; \"reference_patch_check\": also on the doubled patch), their Richardson "
-      "limit. Resumable (finished cases are kept). Writes DIR/cases/, "
-      "DIR/cases.csv, DIR/classification.csv, DIR/guidelines.csv, DIR/answer.csv (what to use for "
-      "2, 5 and 10 %) and DIR/study_summary.json. "
-      "Under mpirun or srun the cases are spread over the ranks (docs/cluster.md)");
+  const auto [cmd, args] = add_command<StudyArgs>(app, action, kStudy, run);
   cmd->add_option("study", args->study, "Study file (JSON, e.g. data/study/default.json)")
       ->required();
-  cmd->add_option("--out", args->out, "Output folder")->required();
-  cmd->add_option("-j,--jobs", args->jobs,
-                  "Worker threads per process (default: the study's \"jobs\", else every core)")
-      ->check(whole_number(0, 4096));
+  add_out_folder(*cmd, args->out);
+  add_jobs(*cmd, args->jobs,
+           "Worker threads per process (default: the study's \"jobs\", else every core)");
   cmd->add_option("--shard", args->shard,
                   "K/N: only the K-th of N shards (every N-th particle from the K-th: its meshes "
                   "and cases; no tables); shards may run side by side into one folder");
@@ -141,11 +145,10 @@ void add_study_command(CLI::App& app, Action& action) {
                   "batch job's time limit, docs/cluster.md)");
   cmd->add_flag("--collect", args->collect,
                 "Run nothing: write the tables from the cases in DIR (after the shards)");
-  cmd->add_flag("-q,--quiet", args->quiet, "Only errors on stderr");
+  add_quiet(*cmd, args->quiet, "Only errors on stderr");
   cmd->add_flag(
       "--allow-failed", args->allow_failed,
       "Exit 0 even when a case failed (the report target: its report lists the failures)");
-  cmd->callback([args, &action] { action = [args] { return run(*args); }; });
 }
 
 }  // namespace asperity::app

@@ -3,6 +3,7 @@
 #include <filesystem>
 #include <memory>
 
+#include "app/cli_options.hpp"
 #include "app/commands.hpp"
 #include "app/out_folder.hpp"
 #include "peers/external_solver.hpp"
@@ -13,29 +14,50 @@
 namespace asperity::app {
 namespace fs = std::filesystem;
 
+namespace {
+
+// `asperity validate`: its name and its help paragraph.
+constexpr CommandText kValidate{
+    .name = "validate",
+    .about =
+        "Run validation cases (files or folders of case JSON) and check them: writes "
+        "DIR/report.md, DIR/results.csv, DIR/validation.json, DIR/cases/NAME/. Under mpirun or "
+        "srun "
+        "the cases are spread over the ranks (docs/cluster.md)",
+};
+
+struct ValidateArgs {
+  std::vector<fs::path> cases;
+  validation::ValidateOptions options;
+  peers::CaseSolver solver;  // none: asperity solves
+};
+
+int run_cases(const ValidateArgs& a) {
+  // A bad case file, then a bad --out or --junit, is exit 2 before anything runs.
+  const std::vector<validation::CaseDef> cases = validation::load_cases(a.cases);
+  check_out_folder(a.options.out);
+  if (a.options.junit) check_out_file(*a.options.junit, "--junit");
+  // A solver that cannot run them is exit 2 before anything runs or is written.
+  validation::ValidateOptions options = a.options;
+  if (a.solver.any()) {
+    peers::check_solver(a.solver, cases);
+    options.solver = peers::other_solver(a.solver);
+  }
+  return validation::validate_cases(cases, options) == 0 ? kExitOk : kExitFailure;
+}
+
+}  // namespace
+
 void add_validate_command(CLI::App& app, Action& action) {
-  struct Args {
-    std::vector<fs::path> cases;
-    validation::ValidateOptions options;
-    peers::CaseSolver solver;  // none: asperity solves
-  };
-  auto args = std::make_shared<Args>();
+  const auto [validate, args] = add_command<ValidateArgs>(app, action, kValidate, run_cases);
   validation::ValidateOptions& o = args->options;
   peers::CaseSolver& solver = args->solver;
-  auto* validate = app.add_subcommand(
-      "validate",
-      "Run validation cases (files or folders of case JSON) and check them: writes "
-      "DIR/report.md, DIR/results.csv, DIR/validation.json, DIR/cases/NAME/. Under mpirun or srun "
-      "the cases are spread over the ranks (docs/cluster.md)");
   validate->add_option("cases", args->cases, "Case files or folders")->required();
-  validate->add_option("--out", o.out, "Output folder")->required();
+  add_out_folder(*validate, o.out);
   validate->add_option("-j,--jobs", o.jobs, "Worker threads per process (default 1)")
       ->check(CLI::PositiveNumber);
-  std::string names;
-  for (const peers::Adapter& a : peers::adapters())
-    names += std::string(names.empty() ? "" : "|") + a.name;
   validate->add_option("--solver", solver.peer,
-                       "Solve the cases with a peer (" + names +
+                       "Solve the cases with a peer (" + peers::adapter_names("|") +
                            ") at asperity's step, and gate it (docs/crosscheck.md)");
   validate->add_option("--solver-program", solver.program,
                        "The --solver peer's executable (default: its program on PATH)");
@@ -44,21 +66,7 @@ void add_validate_command(CLI::App& app, Action& action) {
                        "command line where {scene} is the scene file and {out} the folder for its "
                        "summary.json and force.csv");
   validate->add_option("--junit", o.junit, "Also write JUnit XML: one testcase per case and check");
-  validate->add_flag("-q,--quiet", o.quiet, "Only errors on stderr");
-  validate->callback([args, &action] {
-    action = [args] {
-      // A bad case file, then a bad --out or --junit, is exit 2 before anything runs.
-      const std::vector<validation::CaseDef> cases = validation::load_cases(args->cases);
-      check_out_folder(args->options.out);
-      if (args->options.junit) check_out_file(*args->options.junit, "--junit");
-      // A solver that cannot run them is exit 2 before anything runs or is written.
-      if (args->solver.any()) {
-        peers::check_solver(args->solver, cases);
-        args->options.solver = peers::other_solver(args->solver);
-      }
-      return validation::validate_cases(cases, args->options) == 0 ? kExitOk : kExitFailure;
-    };
-  });
+  add_quiet(*validate, o.quiet, "Only errors on stderr");
 }
 
 }  // namespace asperity::app

@@ -1,4 +1,5 @@
-// One file per command: each registers its CLI11 subcommand and the action that runs it.
+// One file per command: each registers its CLI11 subcommand and the action that runs it (through
+// add_command, app/cli_options.hpp).
 #pragma once
 
 #include <functional>

@@ -6,6 +6,7 @@
 
 #include <benchmark/benchmark.h>
 
+#include "scenes/dem_scenes.hpp"
 #include "solver/core/clock.hpp"
 #include "solver/dem/mindlin_columns.hpp"
 #include "solver/dem/sphere_world.hpp"
@@ -17,12 +18,7 @@ using namespace asperity;
 
 dem::SphereWorld make_world(int n, double radius, bool hertz_mindlin) {
   dem::SphereWorld w;
-  w.materials = {{.name = "glass",
-                  .density = 2500,
-                  .young = 6.3e10,
-                  .poisson = 0.23,
-                  .friction = 0.3,
-                  .restitution = 0.8}};
+  w.materials = {test::glass(0.3, 0.8)};
   w.law.normal = contact::NormalLaw::hertz;
   w.law.tangential = hertz_mindlin;
   const double m = 2500 * 4.0 / 3.0 * std::numbers::pi * radius * radius * radius;
@@ -166,12 +162,7 @@ void BM_BedRun(benchmark::State& state) {
   s.duration = 20 * dt;
   s.dt = dt;
   s.gravity = Vec3(0, 0, -9.81);
-  s.materials = {{.name = "glass",
-                  .density = 2500,
-                  .young = 6.3e10,
-                  .poisson = 0.23,
-                  .friction = 0.3,
-                  .restitution = 0.8}};
+  s.materials = {test::glass(0.3, 0.8)};
   for (int z = 0; z < side; ++z)
     for (int y = 0; y < side; ++y)
       for (int x = 0; x < side; ++x) {

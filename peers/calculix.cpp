@@ -314,18 +314,7 @@ PeerTrace run(const scene::SceneDef& s, const Resolved& r, const fs::path& exe, 
     in["triangles"] = std::move(triangles);
   }
   write_file(dir / "input.json", in.dump(2) + "\n");
-  const std::string cmd = "python3 " + shell_quote(script.string()) + " " +
-                          shell_quote((dir / "input.json").string()) + " " +
-                          shell_quote(dir.string()) + " > " +
-                          shell_quote((dir / "calculix.log").string()) + " 2>&1 < /dev/null";
-  const int code = run_command(cmd);
-  if (code != 0 || !fs::exists(dir / "raw.json")) {
-    std::ifstream err(dir / "error.txt");
-    std::string why;
-    if (!err || !std::getline(err, why) || why.empty()) why = log_tail(dir / "calculix.log");
-    throw PeerFailure("calculix failed (exit " + std::to_string(code) + "): " + why +
-                      " [log: " + (dir / "calculix.log").string() + "]");
-  }
+  run_translator("calculix", "python3 " + shell_quote(script.string()), dir);
   const Json raw = Json::parse(std::ifstream(dir / "raw.json"));
   PeerTrace tr;
   if (mode == RunMode::trace) {

@@ -84,6 +84,9 @@ struct Adapter {
 // The table of peers; find_adapter throws InputError naming the known ones.
 const std::vector<Adapter>& adapters();
 const Adapter& find_adapter(const std::string& name);
+// The peers' names in the table's order, joined by `separator` ("yade|lammps|...": the help of
+// --peer and --solver; ", ": find_adapter's message).
+std::string adapter_names(const std::string& separator);
 
 // The executable `name` resolves to on PATH (or itself when it names a path); empty if none.
 std::filesystem::path find_executable(const std::string& name);
@@ -115,5 +118,11 @@ int run_command(const std::string& command);
 void write_file(const std::filesystem::path& file, const std::string& text);
 // The last non-empty lines of a log, joined with " | " ("(no output)" when none).
 std::string log_tail(const std::filesystem::path& file, int lines = 3);
+// Runs a peer's translator script (scene_to_yade.py, scene_to_calculix.py): `launch`, the program
+// and the script, with DIR/input.json and DIR after it, its output into DIR/PEER.log. Throws
+// PeerFailure unless it exits 0 and writes DIR/raw.json, in the peer's own words: error.txt's
+// first line (the script writes it), else the log's last lines.
+void run_translator(const std::string& peer, const std::string& launch,
+                    const std::filesystem::path& dir);
 
 }  // namespace asperity::peers

@@ -28,12 +28,16 @@ const std::vector<Adapter>& adapters() {
 }
 
 const Adapter& find_adapter(const std::string& name) {
-  std::string known;
   for (const Adapter& a : adapters()) {
     if (name == a.name) return a;
-    known += std::string(known.empty() ? "" : ", ") + a.name;
   }
-  throw InputError("--peer " + name + ": unknown peer (known: " + known + ")");
+  throw InputError("--peer " + name + ": unknown peer (known: " + adapter_names(", ") + ")");
+}
+
+std::string adapter_names(const std::string& separator) {
+  std::string names;
+  for (const Adapter& a : adapters()) names += (names.empty() ? "" : separator) + a.name;
+  return names;
 }
 
 fs::path find_executable(const std::string& name) {
@@ -86,6 +90,20 @@ std::string log_tail(const fs::path& file, int n) {
   const std::size_t from = lines.size() > static_cast<std::size_t>(n) ? lines.size() - n : 0;
   for (std::size_t i = from; i < lines.size(); ++i) out += (out.empty() ? "" : " | ") + lines[i];
   return out.empty() ? "(no output)" : out;
+}
+
+void run_translator(const std::string& peer, const std::string& launch, const fs::path& dir) {
+  const fs::path log = dir / (peer + ".log");
+  const int code = run_command(launch + " " + shell_quote((dir / "input.json").string()) + " " +
+                               shell_quote(dir.string()) + " > " + shell_quote(log.string()) +
+                               " 2>&1 < /dev/null");
+  if (code != 0 || !fs::exists(dir / "raw.json")) {
+    std::ifstream err(dir / "error.txt");
+    std::string why;
+    if (!err || !std::getline(err, why) || why.empty()) why = log_tail(log);
+    throw PeerFailure(peer + " failed (exit " + std::to_string(code) + "): " + why +
+                      " [log: " + log.string() + "]");
+  }
 }
 
 std::vector<int> free_spheres(const scene::SceneDef& s) {

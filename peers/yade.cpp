@@ -129,19 +129,7 @@ PeerTrace run(const scene::SceneDef& s, const Resolved& r, const fs::path& exe, 
   Json in = poly ? yade_polyhedra_input(s, r.dt, r.steps) : yade_input(s, r);
   in["cost_only"] = mode == RunMode::cost;  // scene_to_yade.py: the plain run alone
   write_file(dir / "input.json", in.dump(2) + "\n");
-  const std::string cmd = shell_quote(exe.string()) + " -n -x " + shell_quote(script.string()) +
-                          " " + shell_quote((dir / "input.json").string()) + " " +
-                          shell_quote(dir.string()) + " > " +
-                          shell_quote((dir / "yade.log").string()) + " 2>&1 < /dev/null";
-  const int code = run_command(cmd);
-  if (code != 0 || !fs::exists(dir / "raw.json")) {
-    // YADE's own words: error.txt's first line, else the log's last lines.
-    std::ifstream err(dir / "error.txt");
-    std::string why;
-    if (!err || !std::getline(err, why) || why.empty()) why = log_tail(dir / "yade.log");
-    throw PeerFailure("yade failed (exit " + std::to_string(code) + "): " + why +
-                      " [log: " + (dir / "yade.log").string() + "]");
-  }
+  run_translator("yade", shell_quote(exe.string()) + " -n -x " + shell_quote(script.string()), dir);
   const Json raw = Json::parse(std::ifstream(dir / "raw.json"));
   if (mode == RunMode::cost) {
     PeerTrace tr;

@@ -41,6 +41,32 @@ inline TetMesh mirrored_x(TetMesh m) {
   return m;
 }
 
+// Mirror image through z = 0 (node order swapped to keep volumes positive).
+inline TetMesh mirrored_z(TetMesh m) {
+  m.nodes.row(2) *= -1;
+  m.tets.row(1).swap(m.tets.row(2));
+  m.surface.row(1).swap(m.surface.row(2));
+  return m;
+}
+
+// Two deformable bodies head-on: "upper", the mesh (above z = 0) moving down at `speed`, and
+// "lower", its mirror image through z = 0 moving up at `speed`. Total momentum zero; the mid-plane
+// is a plane of symmetry, so each body sees a frictionless rigid plane at `speed`.
+inline WorldDef mirrored_pair(const TetMesh& upper, const Material& m, double speed) {
+  WorldDef def;
+  def.bodies.push_back({.name = "upper",
+                        .kind = BodyKind::deformable,
+                        .mesh = upper,
+                        .material = m,
+                        .velocity = Vec3(0, 0, -speed)});
+  def.bodies.push_back({.name = "lower",
+                        .kind = BodyKind::deformable,
+                        .mesh = mirrored_z(upper),
+                        .material = m,
+                        .velocity = Vec3(0, 0, speed)});
+  return def;
+}
+
 // A fixed block whose top is z = 0, wide enough for anything of size `size` near the origin.
 inline BodyDef block(double size, const Material& m) {
   return {.name = "block",

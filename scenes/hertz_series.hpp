@@ -50,14 +50,6 @@ inline TetMesh level_mesh(double s, double k, bool graded = true) {
                                   o);
 }
 
-// Mirror image through z = 0 (node order swapped to keep volumes positive).
-inline TetMesh mirrored_z(TetMesh m) {
-  m.nodes.row(2) *= -1;
-  m.tets.row(1).swap(m.tets.row(2));
-  m.surface.row(1).swap(m.surface.row(2));
-  return m;
-}
-
 // The pair: the sphere (strike point down) above z = 0 moving down at `speed`, and its mirror
 // image through z = 0 moving up at `speed`: relative speed 2v, the mid-plane a frictionless
 // plane of symmetry, so each sphere sees the block case at v. Hertz for the pair (m* = m/2,
@@ -65,18 +57,8 @@ inline TetMesh mirrored_z(TetMesh m) {
 // duration and contact radius, twice the total approach.
 inline WorldDef sphere_pair(const TetMesh& ball, const Material& m, double speed, double gap,
                             double alpha = 10) {
-  WorldDef def;
-  const TetMesh upper = scenes::translated(ball, Vec3(0, 0, kRadius + gap / 2));
-  def.bodies.push_back({.name = "upper",
-                        .kind = BodyKind::deformable,
-                        .mesh = upper,
-                        .material = m,
-                        .velocity = Vec3(0, 0, -speed)});
-  def.bodies.push_back({.name = "lower",
-                        .kind = BodyKind::deformable,
-                        .mesh = mirrored_z(upper),
-                        .material = m,
-                        .velocity = Vec3(0, 0, speed)});
+  WorldDef def =
+      scenes::mirrored_pair(scenes::translated(ball, Vec3(0, 0, kRadius + gap / 2)), m, speed);
   def.contact.alpha = alpha;
   return def;
 }

@@ -188,26 +188,32 @@ void read_resolutions(const JsonReader& r, StudyDef& s) {
   s.reference = s.resolutions.back();
 }
 
+// A key that lists names from a fixed set ("models", "placements"): a non-empty array, each entry
+// a name `of` knows (an unknown one is refused with the names `expected`), and with `unique` none
+// listed twice. Entries are checked in order, so the first bad one is the one named.
+template <class T, class Of>
+std::vector<T> read_names(const JsonReader& list, Of of, const std::string& expected,
+                          const std::string& noun, bool unique) {
+  std::vector<T> out;
+  for (std::size_t i = 0, n = list.require_array(); i < n; ++i) {
+    const Json& v = list.at(i).value();
+    const std::optional<T> x = of(v.is_string() ? v.get<std::string>() : "");
+    if (!x) list.at(i).fail("", "must be " + expected + " (got " + io::echo(v) + ")");
+    out.push_back(*x);
+    if (unique && std::count(out.begin(), out.end(), *x) > 1)
+      list.at(i).fail("", "lists a " + noun + " twice");
+  }
+  if (out.empty()) list.fail("", "must list at least one " + noun);
+  return out;
+}
+
 // "models": each once.
 void read_models(const JsonReader& r, StudyDef& s) {
   s.models = {ModelKind::fem, ModelKind::rigid, ModelKind::sphere};
   if (r.has("models")) {
-    const JsonReader list = r.child("models");
-    s.models.clear();
-    for (std::size_t i = 0, n = list.require_array(); i < n; ++i) {
-      const Json& v = list.at(i).value();
-      const std::string m = v.is_string() ? v.get<std::string>() : "";
-      if (const std::optional<ModelKind> kind = model_of(m))
-        s.models.push_back(*kind);
-      else
-        list.at(i).fail("",
-                        "must be \"fem\", \"rigid\", \"rigid-penalty\", \"sphere\" or "
-                        "\"sphere-local\" (got " +
-                            io::echo(v) + ")");
-      if (std::count(s.models.begin(), s.models.end(), s.models.back()) > 1)
-        list.at(i).fail("", "lists a model twice");
-    }
-    if (s.models.empty()) list.fail("", "must list at least one model");
+    s.models = read_names<ModelKind>(
+        r.child("models"), model_of,
+        "\"fem\", \"rigid\", \"rigid-penalty\", \"sphere\" or \"sphere-local\"", "model", true);
   }
 }
 
@@ -215,19 +221,13 @@ void read_models(const JsonReader& r, StudyDef& s) {
 void read_placements(const JsonReader& r, StudyDef& s) {
   s.placements = {Placement::centroid, Placement::lowest};
   if (r.has("placements")) {
-    const JsonReader list = r.child("placements");
-    s.placements.clear();
-    for (std::size_t i = 0, n = list.require_array(); i < n; ++i) {
-      const Json& v = list.at(i).value();
-      const std::string m = v.is_string() ? v.get<std::string>() : "";
-      if (m == "centroid")
-        s.placements.push_back(Placement::centroid);
-      else if (m == "lowest")
-        s.placements.push_back(Placement::lowest);
-      else
-        list.at(i).fail("", "must be \"centroid\" or \"lowest\" (got " + io::echo(v) + ")");
-    }
-    if (s.placements.empty()) list.fail("", "must list at least one placement");
+    const auto placement_of = [](std::string_view name) -> std::optional<Placement> {
+      if (name == "centroid") return Placement::centroid;
+      if (name == "lowest") return Placement::lowest;
+      return std::nullopt;
+    };
+    s.placements = read_names<Placement>(r.child("placements"), placement_of,
+                                         "\"centroid\" or \"lowest\"", "placement", false);
   }
 }
 

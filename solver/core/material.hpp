@@ -8,6 +8,8 @@
 #include <string_view>
 #include <utility>
 
+#include "solver/core/enum_names.hpp"
+
 namespace asperity {
 
 // The elastic law of a deformable (FEM) body's tetrahedra: compressible neo-Hookean
@@ -15,21 +17,15 @@ namespace asperity {
 // (fem/linear_elastic_tet.hpp: for validation against linear-elastic solutions only; a rotated
 // element carries spurious stress, and a run stops past fem::kLinearMaxRotation).
 enum class ElasticLaw { neo_hookean, linear };
-inline constexpr std::array<std::pair<ElasticLaw, std::string_view>, 2> kElasticLawNames{{
+inline constexpr NameTable<ElasticLaw, 2> kElasticLawNames{{
     {ElasticLaw::neo_hookean, "neo-hookean"},
     {ElasticLaw::linear, "linear"},
 }};
 inline std::string elastic_law_name(ElasticLaw law) {
-  for (const auto& [l, name] : kElasticLawNames) {
-    if (l == law) return std::string(name);
-  }
-  return "?";
+  return name_in(kElasticLawNames, law);
 }
 inline std::optional<ElasticLaw> elastic_law_from_name(std::string_view name) {
-  for (const auto& [l, n] : kElasticLawNames) {
-    if (n == name) return l;
-  }
-  return std::nullopt;
+  return value_named(kElasticLawNames, name);
 }
 
 struct Material {

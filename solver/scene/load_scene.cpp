@@ -34,9 +34,7 @@ Material parse_material(const JsonReader& m, const std::string& name) {
     if (const std::optional<ElasticLaw> known = elastic_law_from_name(law)) {
       out.law = *known;
     } else {
-      std::vector<std::string_view> names;
-      for (const auto& [l, n] : kElasticLawNames) names.push_back(n);
-      const std::string near = io::closest_key(law, names);
+      const std::string near = io::closest_key(law, names_in(kElasticLawNames));
       m.fail("law", "unknown elastic law " + io::echo(m.value().at("law")) +
                         (near.empty() ? "" : " (did you mean \"" + near + "\"?)") +
                         "; expected neo-hookean or linear");
@@ -109,8 +107,7 @@ ContactDef parse_contact(const JsonReader& c) {
   c.only_keys_in(keys::kContact);
   ContactDef out;
   const std::string law = c.string("law");
-  std::vector<std::string_view> names;
-  for (const auto& [l, name] : kContactLawNames) names.push_back(name);
+  const std::vector<std::string_view> names = names_in(kContactLawNames);
   if (const std::optional<ContactLaw> known = contact_law_from_name(law)) {
     out.law = *known;
     if (out.law == ContactLaw::linear) out.kn = c.positive("kn");
@@ -170,11 +167,9 @@ ContactDef parse_contact(const JsonReader& c) {
       c.fail("contact_factor_by", "only the potential law takes contact_factor_by");
     }
     const std::string by = c.string("contact_factor_by");
-    bool known = false;
-    for (const auto& [value, name] : kContactFactorByNames) {
-      if (name == by) out.contact_factor_by = value, known = true;
-    }
-    if (!known) {
+    if (const std::optional<ContactFactorBy> known = value_named(kContactFactorByNames, by)) {
+      out.contact_factor_by = *known;
+    } else {
       c.fail("contact_factor_by", "unknown \"" + by + "\"; expected face-penalty, penalty or mass");
     }
   }

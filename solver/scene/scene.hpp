@@ -65,7 +65,7 @@ struct BodyDef {
 enum class ContactLaw { hertz, hertz_mindlin, linear, potential, volume_hertz, volume_linear };
 
 // The scene's name of each law: the one table the loader parses with and summaries write.
-inline constexpr std::array<std::pair<ContactLaw, std::string_view>, 6> kContactLawNames{{
+inline constexpr NameTable<ContactLaw, 6> kContactLawNames{{
     {ContactLaw::hertz, "hertz"},
     {ContactLaw::hertz_mindlin, "hertz-mindlin"},
     {ContactLaw::linear, "linear"},
@@ -74,22 +74,16 @@ inline constexpr std::array<std::pair<ContactLaw, std::string_view>, 6> kContact
     {ContactLaw::volume_linear, "volume-linear"},
 }};
 inline std::string contact_law_name(ContactLaw law) {
-  for (const auto& [l, name] : kContactLawNames) {
-    if (l == law) return std::string(name);
-  }
-  return "?";
+  return name_in(kContactLawNames, law);
 }
 inline std::optional<ContactLaw> contact_law_from_name(std::string_view name) {
-  for (const auto& [l, n] : kContactLawNames) {
-    if (n == name) return l;
-  }
-  return std::nullopt;
+  return value_named(kContactLawNames, name);
 }
 
 // What meets contact.max_contact_factor (fdem::ContactStepFix): the penalty of the faces that
 // set the step, the one penalty of every face, or the mass of the surface nodes that set it.
 enum class ContactFactorBy { face_penalty, penalty, mass };
-inline constexpr std::array<std::pair<ContactFactorBy, std::string_view>, 3> kContactFactorByNames{{
+inline constexpr NameTable<ContactFactorBy, 3> kContactFactorByNames{{
     {ContactFactorBy::face_penalty, "face-penalty"},
     {ContactFactorBy::penalty, "penalty"},
     {ContactFactorBy::mass, "mass"},

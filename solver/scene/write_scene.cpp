@@ -72,11 +72,8 @@ OJson contact_json(const ContactDef& c) {
   put("penalty", c.penalty);
   put("penalty_alpha", c.penalty_alpha);
   put("max_contact_factor", c.max_contact_factor);
-  if (c.contact_factor_by != ContactFactorBy::face_penalty) {
-    for (const auto& [by, name] : kContactFactorByNames) {
-      if (by == c.contact_factor_by) j["contact_factor_by"] = std::string(name);
-    }
-  }
+  if (c.contact_factor_by != ContactFactorBy::face_penalty)
+    j["contact_factor_by"] = name_in(kContactFactorByNames, c.contact_factor_by);
   put("max_added_mass", c.max_added_mass);
   put("kv", c.kv);
   put("friction", c.friction);

@@ -42,13 +42,18 @@ bad() {
 case_file=$src/validation/cases/hertz/hertz-glass-sphere-plane-1ms.json
 /usr/bin/python3 -c "import json,sys; print(json.dumps(json.load(open(sys.argv[1]))['scene']))" \
   "$case_file" > "$in/good.json"
-variant() {  # variant NAME PYTHON-STATEMENT: $in/NAME.json = good.json with s changed
-  /usr/bin/python3 - "$in/good.json" "$in/$1.json" "$2" <<'PY'
+# edited FROM TO PYTHON-STATEMENT: TO = the JSON file FROM changed by the statement, which sees the
+# document as s (a scene) or c (a case): variant, poly_variant and case_variant write through it.
+edited() {
+  /usr/bin/python3 - "$1" "$2" "$3" <<'PY'
 import json, sys
-s = json.load(open(sys.argv[1]))
+s = c = json.load(open(sys.argv[1]))
 exec(sys.argv[3])
 json.dump(s, open(sys.argv[2], "w"))
 PY
+}
+variant() {  # variant NAME PYTHON-STATEMENT: $in/NAME.json = good.json with s changed
+  edited "$in/good.json" "$in/$1.json" "$2"
 }
 
 # --- 1. Deep nesting (was SIGSEGV: the message echoed the value recursively) and huge values (a
@@ -120,12 +125,7 @@ mesh = s['bodies'][0]['shape']
 mesh['file'] = os.path.normpath(os.path.join(os.path.dirname(sys.argv[1]), mesh['file']))
 json.dump(s, open(sys.argv[2], 'w'))" "$poly_case" "$in/poly.json"
 poly_variant() {  # poly_variant NAME PYTHON-STATEMENT: $in/NAME.json = poly.json with s changed
-  /usr/bin/python3 - "$in/poly.json" "$in/$1.json" "$2" <<'PY'
-import json, sys
-s = json.load(open(sys.argv[1]))
-exec(sys.argv[3])
-json.dump(s, open(sys.argv[2], "w"))
-PY
+  edited "$in/poly.json" "$in/$1.json" "$2"
 }
 poly_variant nokv "del s['contact']['kv']"
 bad "volume-linear without kv" "nokv.json: contact\.kv: volume-linear needs kv" run "$in/nokv.json" --out "$out/r"
@@ -150,12 +150,7 @@ bad "volume-hertz to YADE" "vhertz.json: contact\.law: yade: .*\"volume-hertz\" 
 # --- 3. Case names: a case writes into --out/cases/NAME, so NAME is a plain unique name
 case_variant() {  # case_variant NAME PYTHON-STATEMENT: $in/cases/NAME.json = the Hertz case, c changed
   mkdir -p "$in/cases"
-  /usr/bin/python3 - "$case_file" "$in/cases/$1.json" "$2" <<'PY'
-import json, sys
-c = json.load(open(sys.argv[1]))
-exec(sys.argv[3])
-json.dump(c, open(sys.argv[2], "w"))
-PY
+  edited "$case_file" "$in/cases/$1.json" "$2"
 }
 case_variant escape "c['case'] = '../../../escape'"
 bad "case name ../../../escape" "escape.json: case: must not contain a path separator" validate "$in/cases/escape.json" --out "$out/v"

@@ -61,6 +61,7 @@ struct Track {
   double v_end = 0;          // m/s, v_x at the end
   double max_slip = 0;       // m, largest |x − x₀| of the centre of the base
   double max_depth = 0;      // m, deepest penetration of any of its pairs
+  double time = 0;           // s, the world's time at the end
 };
 
 // Mean x of the box's lowest nodes (the centre of its base): rocking on the penalty layer turns
@@ -96,6 +97,18 @@ Track run(World& w, double t_end, bool stop_at_rest) {
   }
   t.distance = body_centre(w, 0).x() - x0;
   t.v_end = body_velocity(w, 0).x();
+  t.time = w.time;
+  return t;
+}
+
+// box_on_block's box (its kind and cells, μ, v0 along x, gravity tilted by θ) run as `run` does;
+// the run must end without a failure.
+Track slide(BodyKind kind, int cells, double mu, double v0, double theta, double t_end,
+            bool stop_at_rest) {
+  Slide s = box_on_block(kind, cells, mu, v0, theta);
+  World w = make_world(s.def);
+  const Track t = run(w, t_end, stop_at_rest);
+  EXPECT_TRUE(w.failure.empty()) << w.failure;
   return t;
 }
 
@@ -106,10 +119,7 @@ Track run(World& w, double t_end, bool stop_at_rest) {
 // pressure, not its total), and the step error of v is μg·dt, ~1e-4 of v0.
 TEST(Friction, RigidBoxSlidingOnLevelBlockStopsAfterCoulombDistance) {
   const double mu = 0.3, v0 = 1.0;
-  Slide s = box_on_block(BodyKind::rigid, 1, mu, v0, 0);
-  World w = make_world(s.def);
-  const Track t = run(w, 1.0, true);
-  ASSERT_TRUE(w.failure.empty()) << w.failure;
+  const Track t = slide(BodyKind::rigid, 1, mu, v0, 0, 1.0, true);
   ASSERT_GT(t.stop_time, 0) << "still sliding at t = 1 s";
   const double t_stop = v0 / (mu * kG), d_stop = v0 * v0 / (2 * mu * kG);
   EXPECT_NEAR(t.stop_time / t_stop, 1.0, 0.01) << t.stop_time << " s vs " << t_stop << " s";
@@ -124,10 +134,7 @@ TEST(Friction, RigidBoxSlidingOnLevelBlockStopsAfterCoulombDistance) {
 TEST(Friction, RigidBoxOnInclineSticksBelowFrictionAngle) {
   const double mu = 0.5, theta = 20 * std::numbers::pi / 180, t_end = 0.2;
   ASSERT_LT(std::tan(theta), mu);
-  Slide s = box_on_block(BodyKind::rigid, 1, mu, 0, theta);
-  World w = make_world(s.def);
-  const Track t = run(w, t_end, false);
-  ASSERT_TRUE(w.failure.empty()) << w.failure;
+  const Track t = slide(BodyKind::rigid, 1, mu, 0, theta, t_end, false);
   ASSERT_GT(t.max_depth, 0);
   EXPECT_LT(t.max_slip, 1.5 * 2 * t.max_depth * std::tan(theta))
       << "free slide would be " << 0.5 * kG * std::sin(theta) * t_end * t_end << " m";
@@ -138,13 +145,10 @@ TEST(Friction, RigidBoxOnInclineSticksBelowFrictionAngle) {
 TEST(Friction, RigidBoxOnInclineSlidesAboveFrictionAngle) {
   const double mu = 0.2, theta = 30 * std::numbers::pi / 180, t_end = 0.2;
   ASSERT_GT(std::tan(theta), mu);
-  Slide s = box_on_block(BodyKind::rigid, 1, mu, 0, theta);
-  World w = make_world(s.def);
-  const Track t = run(w, t_end, false);
-  ASSERT_TRUE(w.failure.empty()) << w.failure;
+  const Track t = slide(BodyKind::rigid, 1, mu, 0, theta, t_end, false);
   const double a = kG * (std::sin(theta) - mu * std::cos(theta));
-  EXPECT_NEAR(t.v_end / (a * w.time), 1.0, 0.01) << "a = " << t.v_end / w.time << " vs " << a;
-  EXPECT_NEAR(t.distance / (0.5 * a * w.time * w.time), 1.0, 0.01);
+  EXPECT_NEAR(t.v_end / (a * t.time), 1.0, 0.01) << "a = " << t.v_end / t.time << " vs " << a;
+  EXPECT_NEAR(t.distance / (0.5 * a * t.time * t.time), 1.0, 0.01);
 }
 
 // A deformable box (2 × 2 × 1 cells, neo-Hookean) sliding on the level block decelerates at μg
@@ -158,10 +162,7 @@ TEST(Friction, RigidBoxOnInclineSlidesAboveFrictionAngle) {
 // here, depending on the step).
 TEST(Friction, DeformableBoxSlidingOnLevelBlockStopsAfterCoulombDistance) {
   const double mu = 0.3, v0 = 1.0;
-  Slide s = box_on_block(BodyKind::deformable, 2, mu, v0, 0);
-  World w = make_world(s.def);
-  const Track t = run(w, 1.0, true);
-  ASSERT_TRUE(w.failure.empty()) << w.failure;
+  const Track t = slide(BodyKind::deformable, 2, mu, v0, 0, 1.0, true);
   ASSERT_GT(t.stop_time, 0) << "still sliding at t = 1 s";
   const double t_stop = v0 / (mu * kG), d_stop = v0 * v0 / (2 * mu * kG);
   EXPECT_NEAR(t.half_time / (0.5 * t_stop), 1.0, 0.03)

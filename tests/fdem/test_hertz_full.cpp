@@ -21,6 +21,20 @@ using hertz::sequence;
 using hertz::Sequence;
 using hertz::Setup;
 
+// The head-on pair against the block, the symmetric problem's two forms. Level by level they see
+// the same sphere mesh: their durations and filtered peaks agree within 0.5 % (the contact layer's
+// own compliance, about h/(4αa) of the approach, is a few tenths of a percent). Their limits are
+// one answer, each extrapolated from its own sequence: 2 % is the tolerance.
+void expect_pair_matches_block(const Sequence& pair, const Sequence& block) {
+  for (std::size_t i = 0; i < pair.levels.size(); ++i) {
+    EXPECT_NEAR(pair.levels[i].err_duration, block.levels[i].err_duration, 0.005) << "level " << i;
+    EXPECT_NEAR(pair.levels[i].err_force_filtered, block.levels[i].err_force_filtered, 0.005)
+        << "level " << i;
+  }
+  EXPECT_NEAR(pair.peak_filtered.limit, block.peak_filtered.limit, 0.02);
+  EXPECT_NEAR(pair.duration.limit, block.duration.limit, 0.02);
+}
+
 // The head-on pair: two equal deformable spheres (the second the mirror image of the first through
 // the contact plane) at relative speed 2v, a/R = 0.15, against the sphere on the fixed block at
 // v. Hertz for the pair (m/2, R/2, E*/2, 2v) is the block's at v, and so is the exact answer: the
@@ -58,20 +72,10 @@ TEST(HertzPair, HeadOnPairConvergesAndMatchesTheBlock) {
   // Momentum: internal and contact forces are equal and opposite pair by pair, so the total
   // momentum (zero) is conserved to round-off: 1e-12 of one sphere's (measured 1.6e-16 to 6.1e-15).
   for (const Level& x : pair.levels) EXPECT_LT(x.momentum, 1e-12) << "s " << x.s;
-  // Level by level the two see the same sphere mesh: their durations and filtered peaks agree
-  // within 0.5 % (durations 0.13, 0.06, 0.11 points apart at s = 2, √2, 1, filtered peaks 0.08,
-  // 0.07, 0.07; the contact layer's own compliance, about h/(4αa) of the approach, is a few tenths
-  // of a percent).
-  for (std::size_t i = 0; i < pair.levels.size(); ++i) {
-    EXPECT_NEAR(pair.levels[i].err_duration, block.levels[i].err_duration, 0.005) << "level " << i;
-    EXPECT_NEAR(pair.levels[i].err_force_filtered, block.levels[i].err_force_filtered, 0.005)
-        << "level " << i;
-  }
-  // The two limits are one answer (the symmetric problem), each extrapolated from its own
-  // sequence: 2 % is the tolerance (measured: filtered +5.47 / +5.39 %, 0.08 point apart;
-  // duration −4.22 / −3.33 %, 0.89 apart, the block's duration extrapolated at order 0.91).
-  EXPECT_NEAR(pair.peak_filtered.limit, block.peak_filtered.limit, 0.02);
-  EXPECT_NEAR(pair.duration.limit, block.duration.limit, 0.02);
+  // Level by level: durations 0.13, 0.06, 0.11 points apart at s = 2, √2, 1, filtered peaks 0.08,
+  // 0.07, 0.07. Limits: filtered +5.47 / +5.39 %, 0.08 point apart; duration −4.22 / −3.33 %, 0.89
+  // apart, the block's duration extrapolated at order 0.91.
+  expect_pair_matches_block(pair, block);
 }
 
 // The head-on pair at a second contact size, a/R = 0.08 (the block's series point nearest the
@@ -99,12 +103,8 @@ TEST(HertzPair, HeadOnPairMatchesTheBlockAtASmallerContact) {
     std::printf("  level %zu: pair %+.4f / %+.4f, block %+.4f / %+.4f (filtered peak / duration)\n",
                 i, pair.levels[i].err_force_filtered, pair.levels[i].err_duration,
                 block.levels[i].err_force_filtered, block.levels[i].err_duration);
-    EXPECT_NEAR(pair.levels[i].err_duration, block.levels[i].err_duration, 0.005) << "level " << i;
-    EXPECT_NEAR(pair.levels[i].err_force_filtered, block.levels[i].err_force_filtered, 0.005)
-        << "level " << i;
   }
-  EXPECT_NEAR(pair.peak_filtered.limit, block.peak_filtered.limit, 0.02);
-  EXPECT_NEAR(pair.duration.limit, block.duration.limit, 0.02);
+  expect_pair_matches_block(pair, block);
 }
 
 // "Converges to Hertz": Hertz is the law of two half-spaces, so the finite sphere's limit may

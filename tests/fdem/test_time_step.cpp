@@ -205,22 +205,8 @@ TEST(ContactStep, MassWithinABudgetLowersTheFactorAndKeepsTheBudget) {
 TEST(ContactStep, ScalingKeepsMomentumExactAndTheImpulse) {
   const Material m = scenes::rubbery();
   const double v = 1.0, r = 0.1;
-  WorldDef def;
-  const TetMesh ball = scenes::translated(ball_mesh(r, 2), Vec3(0, 0, r + 0.001));
-  TetMesh lower = ball;
-  lower.nodes.row(2) *= -1;
-  lower.tets.row(1).swap(lower.tets.row(2));
-  lower.surface.row(1).swap(lower.surface.row(2));
-  def.bodies.push_back({.name = "upper",
-                        .kind = BodyKind::deformable,
-                        .mesh = ball,
-                        .material = m,
-                        .velocity = Vec3(0, 0, -v)});
-  def.bodies.push_back({.name = "lower",
-                        .kind = BodyKind::deformable,
-                        .mesh = lower,
-                        .material = m,
-                        .velocity = Vec3(0, 0, v)});
+  WorldDef def =
+      scenes::mirrored_pair(scenes::translated(ball_mesh(r, 2), Vec3(0, 0, r + 0.001)), m, v);
   // The impulse on the upper ball over its first contact, and |Σ m v| / (m v) at the end.
   auto impact = [&](const WorldDef& d, double& impulse, double& momentum_error, double& mass) {
     World w = make_world(d);

@@ -11,7 +11,9 @@
 
 #include <unistd.h>
 
+#include "solver/core/error.hpp"
 #include "solver/core/mesh.hpp"
+#include "solver/geometry/repair_mesh.hpp"
 
 namespace asperity::geometry::test {
 
@@ -65,6 +67,18 @@ struct TempDir {
   ~TempDir() { std::filesystem::remove_all(path); }
   std::filesystem::path operator/(const std::string& f) const { return path / f; }
 };
+
+// Loads FILE and returns the InputError message, or "" when it loads.
+inline std::string load_error(const std::filesystem::path& file, MeshLog* log = nullptr,
+                              double scale = 1.0) {
+  MeshLog local;
+  try {
+    load_surface_mesh(file, {.scale = scale}, log ? *log : local);
+  } catch (const InputError& e) {
+    return e.what();
+  }
+  return "";
+}
 
 inline void write_text(const std::filesystem::path& file, const std::string& text) {
   std::ofstream(file, std::ios::binary) << text;

@@ -17,17 +17,7 @@
 namespace asperity::geometry {
 namespace {
 
-// Loads FILE and returns the InputError message, or "" when it loads.
-std::string load_error(const std::filesystem::path& file, MeshLog* log = nullptr,
-                       double scale = 1.0) {
-  MeshLog local;
-  try {
-    load_surface_mesh(file, {.scale = scale}, log ? *log : local);
-  } catch (const InputError& e) {
-    return e.what();
-  }
-  return "";
-}
+using test::load_error;
 
 #define EXPECT_HAS(text, part) EXPECT_NE(std::string(text).find(part), std::string::npos) << (text)
 

@@ -12,6 +12,7 @@
 #include "solver/geometry/simplify_edge_collapse.hpp"
 #include "solver/geometry/tet_quality.hpp"
 #include "solver/geometry/tetrahedralize.hpp"
+#include "tests/geometry/mesh_fixtures.hpp"
 
 namespace asperity::geometry {
 namespace {
@@ -100,17 +101,11 @@ TEST(Scans, LiftsKeepTheSurfaceAndNeverShrinkTheStep) {
 TEST(Scans, A13NonManifoldEdgesAreRefused) {
   if (!fs::exists(kScans)) GTEST_SKIP() << kScans << " not present";
   const fs::path f = kScans / "remeshed_high_res_A13_500f.ply";
-  MeshLog log;
-  try {
-    load_surface_mesh(f, {.scale = 1e-3}, log);
-    FAIL() << "A13 should be refused";
-  } catch (const InputError& e) {
-    // SOURCE.md: 3 non-manifold edges and 2 shells, on purpose.
-    EXPECT_EQ(std::string(e.what()).rfind(
-                  f.string() + ": non-manifold edge: 3 edges are shared by more than two faces", 0),
-              0u)
-        << e.what();
-  }
+  // SOURCE.md: 3 non-manifold edges and 2 shells, on purpose.
+  const std::string e = test::load_error(f, nullptr, 1e-3);
+  EXPECT_EQ(
+      e.rfind(f.string() + ": non-manifold edge: 3 edges are shared by more than two faces", 0), 0u)
+      << "A13 should be refused: " << e;
 }
 
 TEST(Scans, A0SelfIntersectionIsRefused) {
@@ -118,14 +113,8 @@ TEST(Scans, A0SelfIntersectionIsRefused) {
   // SOURCE.md lists A0 as clean (closed, manifold, oriented) but did not test intersections:
   // its 500-face decimation folded one face (f277) through two neighbours near one vertex.
   const fs::path f = kScans / "remeshed_high_res_A0_500f.ply";
-  MeshLog log;
-  try {
-    load_surface_mesh(f, {.scale = 1e-3}, log);
-    FAIL() << "A0 should be refused";
-  } catch (const InputError& e) {
-    EXPECT_EQ(std::string(e.what()),
-              f.string() + ": self-intersecting surface: 3 pairs of faces intersect");
-  }
+  EXPECT_EQ(test::load_error(f, nullptr, 1e-3),
+            f.string() + ": self-intersecting surface: 3 pairs of faces intersect");
 }
 
 }  // namespace

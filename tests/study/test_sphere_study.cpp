@@ -55,16 +55,26 @@ SurfaceMesh sphere_surface() {
   return geometry::refined_sphere(8, kRadius, kEdge, kPatch, geometry::lowest_vertex(ico));
 }
 
-TEST(SphereStudy, RefinedFemPeakMatchesTheFiniteSphereAndHertz) {
-  const fs::path work = fs::temp_directory_path() / "asperity_sphere_study";
+// A fresh folder WORK (temporary) holding `surface` as MESH and tests/study/STUDY side by side
+// (the definition names the mesh by path, beside it), and the definition loaded from there.
+struct StudyBesideSphere {
+  fs::path work;
+  StudyDef def;
+};
+StudyBesideSphere sphere_study(const std::string& work_name, const SurfaceMesh& surface,
+                               const std::string& mesh, const std::string& study) {
+  const fs::path work = fs::temp_directory_path() / work_name;
   fs::remove_all(work);
   fs::create_directories(work);
-  // The definition names the mesh by path, beside it: write both into the work folder.
+  geometry::write_surface_mesh(work / mesh, surface);
+  fs::copy_file(fs::path(ASPERITY_SOURCE_DIR) / "tests/study" / study, work / study);
+  return {.work = work, .def = load_study(work / study)};
+}
+
+TEST(SphereStudy, RefinedFemPeakMatchesTheFiniteSphereAndHertz) {
   const SurfaceMesh surface = sphere_surface();
-  geometry::write_surface_mesh(work / "sphere_strike_refined.off", surface);
-  fs::copy_file(fs::path(ASPERITY_SOURCE_DIR) / "tests/study/sphere_study.json",
-                work / "sphere_study.json");
-  const StudyDef def = load_study(work / "sphere_study.json");
+  const auto [work, def] = sphere_study("asperity_sphere_study", surface,
+                                        "sphere_strike_refined.off", "sphere_study.json");
   // The study keeps a mesh of exactly its resolution's triangle count: the definition's
   // resolution is the generated surface's, so the surface is used as it is (no simplification).
   ASSERT_EQ(def.resolutions.size(), 1u);
@@ -140,14 +150,9 @@ TEST(SphereStudy, RefinedFemPeakMatchesTheFiniteSphereAndHertz) {
 // finite-sphere correction +2.23 %), within 0.05 % of the refined sphere's limit above (5720 N);
 // passed; 364 s of CPU (64 + 114 + 187 s), 21.5 min of wall.
 TEST(SphereStudy, SourceReferenceConvergesTowardsTheFiniteSphere) {
-  const fs::path work = fs::temp_directory_path() / "asperity_sphere_source_study";
-  fs::remove_all(work);
-  fs::create_directories(work);
   const SurfaceMesh surface = sphere_surface();
-  geometry::write_surface_mesh(work / "sphere_source.off", surface);
-  fs::copy_file(fs::path(ASPERITY_SOURCE_DIR) / "tests/study/sphere_source_study.json",
-                work / "sphere_source_study.json");
-  const StudyDef def = load_study(work / "sphere_source_study.json");
+  const auto [work, def] = sphere_study("asperity_sphere_source_study", surface,
+                                        "sphere_source.off", "sphere_source_study.json");
   ASSERT_EQ(def.reference_kind, ReferenceKind::source);
 
   StudyRunOptions run{.jobs = 2, .quiet = true};

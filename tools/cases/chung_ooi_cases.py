@@ -61,6 +61,29 @@ def exp_hertz():
     return {"reference": "hertz", "rel_tol": HERTZ_TOL[0], "why": HERTZ_TOL[1] + " (analytic: Johnson 1985 eqs. 11.23-11.24)"}
 
 
+def exp_target_restitution():
+    return {"reference": "target_restitution", "rel_tol": REST_TOL[0], "why": REST_TOL[1]}
+
+
+def mindlin(mu, en):
+    """The contact of every test: Hertz-Mindlin with the test's friction and restitution."""
+    return {"law": "hertz-mindlin", "friction": mu, "restitution": en}
+
+
+def add_case(out, name, number, t, src, tags, what, scene, ex, closed_form=False):
+    """Case NAME of test NUMBER (its data t): the description, tags and sources every case states
+    the same way; `what` the case's own part of the description; the closed form's source when an
+    expected value is one."""
+    source = f"{src['CO2011']} Inputs: {t['source']}."
+    if closed_form:
+        source += f" Closed form: {src['ANALYTIC']}"
+    out[name] = {
+        "description": f"Chung & Ooi test {number} ({t['title']}), {what}",
+        "tags": ["chung-ooi", f"test{number}", *tags],
+        "source": source,
+        "scene": scene, "expected": ex}
+
+
 def exp_value(v, tol, why, abs_tol=None):
     e = {"value": v, "why": why}
     if tol is not None:
@@ -127,15 +150,13 @@ def test1_sphere_sphere(d, mats, rigid, src, out):
                 {"name": "a", "material": m, "shape": {"type": "sphere", "radius": r}, "position": [-(r + gap / 2), 0, 0], "velocity": [v, 0, 0]},
                 {"name": "b", "material": m, "shape": {"type": "sphere", "radius": r}, "position": [r + gap / 2, 0, 0], "velocity": [-v, 0, 0]},
             ],
-            "contact": {"law": "hertz-mindlin", "friction": 0.35, "restitution": 1.0},
+            "contact": mindlin(0.35, 1.0),
             "record": {"force_on": "a"},
         }
         ex = elastic_hertz_expected(t, m)
-        out[scene["name"]] = {
-            "description": f"Chung & Ooi test 1 ({t['title']}), {m}: r = {r} m, each sphere at {v} m/s. Hertz peak force, overlap and duration.",
-            "tags": ["chung-ooi", "test1", "hertz", "sphere-sphere"],
-            "source": f"{src['CO2011']} Inputs: {t['source']}.",
-            "scene": scene, "expected": ex}
+        add_case(out, scene["name"], 1, t, src, ["hertz", "sphere-sphere"],
+                 f"{m}: r = {r} m, each sphere at {v} m/s. Hertz peak force, overlap and duration.",
+                 scene, ex)
 
 
 def test2_sphere_plane(d, mats, rigid, src, out):
@@ -146,13 +167,11 @@ def test2_sphere_plane(d, mats, rigid, src, out):
         mat = mats[m]
         h = hertz(mass(mat, r), r, e_star(mat, rigid), v)
         gap, dur = timing(v, h["contact_duration"])
-        scene = wall_scene(f"chung-ooi-t2-{m}", mats, m, r, (0, 0, -v), dur, {"law": "hertz-mindlin", "friction": 0.0, "restitution": 1.0}, rigid, h["contact_duration"], gap=gap)
+        scene = wall_scene(f"chung-ooi-t2-{m}", mats, m, r, (0, 0, -v), dur, mindlin(0.0, 1.0), rigid, h["contact_duration"], gap=gap)
         ex = elastic_hertz_expected(t, m)
-        out[scene["name"]] = {
-            "description": f"Chung & Ooi test 2 ({t['title']}), {m}: r = {r} m at {v} m/s onto a rigid plane (E* = E/(1-nu^2), R* = r).",
-            "tags": ["chung-ooi", "test2", "hertz", "sphere-plane"],
-            "source": f"{src['CO2011']} Inputs: {t['source']}.",
-            "scene": scene, "expected": ex}
+        add_case(out, scene["name"], 2, t, src, ["hertz", "sphere-plane"],
+                 f"{m}: r = {r} m at {v} m/s onto a rigid plane (E* = E/(1-nu^2), R* = r).",
+                 scene, ex)
 
 
 def test3_restitution(d, mats, rigid, src, out):
@@ -165,15 +184,13 @@ def test3_restitution(d, mats, rigid, src, out):
             h = hertz(mass(mat, r), r, e_star(mat, rigid), v)
             gap, dur = timing(v, h["contact_duration"] * (1.3 if e < 1 else 1.0))
             name = f"chung-ooi-t3-{m}-e{e:.1f}"
-            scene = wall_scene(name, mats, m, r, (0, 0, -v), dur, {"law": "hertz-mindlin", "friction": 0.0, "restitution": e}, rigid, h["contact_duration"], gap=gap)
-            ex = {"status": "ok", "restitution": {"reference": "target_restitution", "rel_tol": REST_TOL[0], "why": REST_TOL[1]}}
+            scene = wall_scene(name, mats, m, r, (0, 0, -v), dur, mindlin(0.0, e), rigid, h["contact_duration"], gap=gap)
+            ex = {"status": "ok", "restitution": exp_target_restitution()}
             if e == 1.0:
                 ex["peak_force"] = exp_hertz()
-            out[name] = {
-                "description": f"Chung & Ooi test 3 ({t['title']}), {m}, input restitution {e}: the measured restitution must equal the input.",
-                "tags": ["chung-ooi", "test3", "restitution", "sphere-plane"],
-                "source": f"{src['CO2011']} Inputs: {t['source']}.",
-                "scene": scene, "expected": ex}
+            add_case(out, name, 3, t, src, ["restitution", "sphere-plane"],
+                     f"{m}, input restitution {e}: the measured restitution must equal the input.",
+                     scene, ex)
 
 
 def test4_oblique_angle(d, mats, rigid, src, out):
@@ -191,8 +208,8 @@ def test4_oblique_angle(d, mats, rigid, src, out):
             h = hertz(mass(mat, r), r, e_star(mat, rigid), vn)
             gap, dur = timing(vn, h["contact_duration"] * 1.1)
             name = f"chung-ooi-t4-{m}-{a:02d}deg"
-            scene = wall_scene(name, mats, m, r, (vt, 0, -vn), dur, {"law": "hertz-mindlin", "friction": mu, "restitution": en}, rigid, h["contact_duration"], gap=gap)
-            ex = {"status": "ok", "restitution": {"reference": "target_restitution", "rel_tol": REST_TOL[0], "why": REST_TOL[1]}}
+            scene = wall_scene(name, mats, m, r, (vt, 0, -vn), dur, mindlin(mu, en), rigid, h["contact_duration"], gap=gap)
+            ex = {"status": "ok", "restitution": exp_target_restitution()}
             regime = "micro-slip (no closed form)"
             if a >= theta_c + 7:
                 regime = "gross sliding (closed form)"
@@ -209,11 +226,9 @@ def test4_oblique_angle(d, mats, rigid, src, out):
                 k = [round(x) for x in curve["angle_deg"]].index(a)
                 ex["tangential_restitution"] = exp_value(curve["value"][k], CURVE_TOL_ET[0],
                                                          CURVE_TOL_ET[1] + f"; curve point ({curve['angle_deg'][k]} deg, {curve['value'][k]}) from {curve['source']}")
-            out[name] = {
-                "description": f"Chung & Ooi test 4 ({t['title']}), {m}, incidence {a} deg from the normal at {v} m/s, mu = {mu}, e_n = {en}; {regime} (stick limit {theta_c:.1f} deg for a rigid sphere).",
-                "tags": ["chung-ooi", "test4", "oblique", "sphere-plane", "sliding" if "gross" in regime else "micro-slip"],
-                "source": f"{src['CO2011']} Inputs: {t['source']}. Closed form: {src['ANALYTIC']}",
-                "scene": scene, "expected": ex}
+            add_case(out, name, 4, t, src, ["oblique", "sphere-plane", "sliding" if "gross" in regime else "micro-slip"],
+                     f"{m}, incidence {a} deg from the normal at {v} m/s, mu = {mu}, e_n = {en}; {regime} (stick limit {theta_c:.1f} deg for a rigid sphere).",
+                     scene, ex, closed_form=True)
 
 
 def test5_tangential_speed(d, mats, rigid, src, out):
@@ -228,7 +243,7 @@ def test5_tangential_speed(d, mats, rigid, src, out):
             h = hertz(mass(mat, r), r, e_star(mat, rigid), vn)
             gap, dur = timing(vn, h["contact_duration"] * 1.1)
             name = f"chung-ooi-t5-{m}-psi{psi:04.1f}"
-            scene = wall_scene(name, mats, m, r, (vt, 0, -vn), dur, {"law": "hertz-mindlin", "friction": mu, "restitution": en}, rigid, h["contact_duration"], gap=gap)
+            scene = wall_scene(name, mats, m, r, (vt, 0, -vn), dur, mindlin(mu, en), rigid, h["contact_duration"], gap=gap)
             ex = {"status": "ok", "restitution": exp_value(1.0, None, "elastic: e = 1; 1e-3 absolute covers the time-step error", abs_tol=1e-3)}
             # Rigid stick limit: Psi1 = 3.5 (1+e) = 7; gate the closed form from Psi1 = 8.
             if psi >= 3.5 * (1 + en) + 1:
@@ -242,11 +257,9 @@ def test5_tangential_speed(d, mats, rigid, src, out):
             else:
                 ex["spin_out"] = {"max": 2.5 * (1 + en) * mu * vn / r * (1 + SPIN_TOL[0]),
                                   "why": "micro-slip regime, no closed form: the spin cannot exceed its gross-sliding value 5 mu Vn / r (friction impulse <= mu times the normal impulse)"}
-            out[name] = {
-                "description": f"Chung & Ooi test 5 ({t['title']}), {m}: Vn = {vn} m/s, Psi1 = Vt/(mu Vn) = {psi}, mu = {mu}, elastic.",
-                "tags": ["chung-ooi", "test5", "oblique", "sphere-plane"],
-                "source": f"{src['CO2011']} Inputs: {t['source']}. Closed form: {src['ANALYTIC']}",
-                "scene": scene, "expected": ex}
+            add_case(out, name, 5, t, src, ["oblique", "sphere-plane"],
+                     f"{m}: Vn = {vn} m/s, Psi1 = Vt/(mu Vn) = {psi}, mu = {mu}, elastic.",
+                     scene, ex, closed_form=True)
 
 
 def test6_spin(d, mats, rigid, src, out):
@@ -262,19 +275,17 @@ def test6_spin(d, mats, rigid, src, out):
             h = hertz(mass(mat, r), r, e_star(mat, rigid), vn)
             gap, dur = timing(vn, h["contact_duration"] * 1.3)
             name = f"chung-ooi-t6-{m}-chi{chi:06.3f}"
-            scene = wall_scene(name, mats, m, r, (0, 0, -vn), dur, {"law": "hertz-mindlin", "friction": mu, "restitution": en}, rigid,
+            scene = wall_scene(name, mats, m, r, (0, 0, -vn), dur, mindlin(mu, en), rigid,
                                h["contact_duration"], w=(0, -vst / r, 0), gap=gap)
-            ex = {"status": "ok", "restitution": {"reference": "target_restitution", "rel_tol": REST_TOL[0], "why": REST_TOL[1]}}
+            ex = {"status": "ok", "restitution": exp_target_restitution()}
             if chi <= 0.6:
                 ex["slip_ratio"] = exp_value(1 - chi, SLIDE_TOL[0], SLIDE_TOL[1] + ": beta = -slip_ratio = chi - 1")
             # chi > 0.6: micro-slip, no closed form. beta there hinges on the tangential damping, which
             # the benchmark leaves to the code; compared with the digitised curve in docs/crosscheck.md
             # and gated against YADE (same Mindlin model and damping), not against the curve.
-            out[name] = {
-                "description": f"Chung & Ooi test 6 ({t['title']}), {m}: Vn = {vn} m/s, contact-point slip {vst:.4g} m/s from spin alone (chi = {chi}).",
-                "tags": ["chung-ooi", "test6", "oblique", "sphere-plane"],
-                "source": f"{src['CO2011']} Inputs: {t['source']}. Closed form: {src['ANALYTIC']}",
-                "scene": scene, "expected": ex}
+            add_case(out, name, 6, t, src, ["oblique", "sphere-plane"],
+                     f"{m}: Vn = {vn} m/s, contact-point slip {vst:.4g} m/s from spin alone (chi = {chi}).",
+                     scene, ex, closed_form=True)
 
 
 def test7_opposite_spin(d, mats, rigid, src, out):
@@ -295,18 +306,16 @@ def test7_opposite_spin(d, mats, rigid, src, out):
                     {"name": "a", "material": m, "shape": {"type": "sphere", "radius": r}, "position": [-(r + gap / 2), 0, 0], "velocity": [v, 0, 0], "angular_velocity": [0, w, 0]},
                     {"name": "b", "material": m, "shape": {"type": "sphere", "radius": r}, "position": [r + gap / 2, 0, 0], "velocity": [-v, 0, 0], "angular_velocity": [0, -w, 0]},
                 ],
-                "contact": {"law": "hertz-mindlin", "friction": mu, "restitution": en},
+                "contact": mindlin(mu, en),
                 "record": {"force_on": "a"},
             }
             ex = {"status": "ok",
-                  "restitution": {"reference": "target_restitution", "rel_tol": REST_TOL[0], "why": REST_TOL[1]},
+                  "restitution": exp_target_restitution(),
                   "angular_velocity_change": {"max": 1e-9 * w, "why": "the two contact points move together (no slip), so no tangential force acts and the spin is unchanged (Chung & Ooi test 7: final = initial spin); 1e-9 relative allows round-off only"},
                   "tangential_speed_out": {"max": 1e-9 * v, "why": "no tangential force: the centres keep zero tangential velocity; 1e-9 of the speed allows round-off only"}}
-            out[name] = {
-                "description": f"Chung & Ooi test 7 ({t['title']}), {m}: +-{v} m/s, spins +-{w} rad/s about the same axis.",
-                "tags": ["chung-ooi", "test7", "spin", "sphere-sphere"],
-                "source": f"{src['CO2011']} Inputs: {t['source']}.",
-                "scene": scene, "expected": ex}
+            add_case(out, name, 7, t, src, ["spin", "sphere-sphere"],
+                     f"{m}: +-{v} m/s, spins +-{w} rad/s about the same axis.",
+                     scene, ex)
 
 
 def test8_large_sphere(d, mats, rigid, src, out):
@@ -332,18 +341,16 @@ def test8_large_sphere(d, mats, rigid, src, out):
                      "velocity": [vn, 0, 0], "angular_velocity": [0, -vst / r, 0]},
                     {"name": "large", "material": m + "_heavy", "shape": {"type": "sphere", "radius": big}, "position": [0, 0, 0]},
                 ],
-                "contact": {"law": "hertz-mindlin", "friction": mu, "restitution": en},
+                "contact": mindlin(mu, en),
                 "record": {"force_on": "small"},
             }
-            ex = {"status": "ok", "restitution": {"reference": "target_restitution", "rel_tol": REST_TOL[0], "why": REST_TOL[1]}}
+            ex = {"status": "ok", "restitution": exp_target_restitution()}
             if chi <= 0.6:
                 ex["slip_ratio"] = exp_value(1 - chi, SLIDE_TOL[0], SLIDE_TOL[1] + ": beta = chi - 1 (the large sphere is 125000 times heavier)")
             # chi > 0.6: micro-slip, as in test 6 (docs/crosscheck.md; gated against YADE).
-            out[name] = {
-                "description": f"Chung & Ooi test 8 ({t['title']}), {m}: r = {r} m at {vn} m/s with contact-point slip {vst:.4g} m/s (chi = {chi}) against a {big} m sphere {t['large_density_factor']}x denser.",
-                "tags": ["chung-ooi", "test8", "oblique", "sphere-sphere"],
-                "source": f"{src['CO2011']} Inputs: {t['source']}. Closed form: {src['ANALYTIC']}",
-                "scene": scene, "expected": ex}
+            add_case(out, name, 8, t, src, ["oblique", "sphere-sphere"],
+                     f"{m}: r = {r} m at {vn} m/s with contact-point slip {vst:.4g} m/s (chi = {chi}) against a {big} m sphere {t['large_density_factor']}x denser.",
+                     scene, ex, closed_form=True)
 
 
 def cases(d):
