@@ -30,11 +30,12 @@ constexpr CommandText kStudy{
         "fem sequence at the finest resolution, with its estimated error; or \"source\", the "
         "particle itself: its source surface kept around the strike point, refined there in 3 "
         "levels (\"reference_elements_across\", 3: the finest level's elements across Hertz's "
-        "contact radius; \"reference_patch_check\": also on the doubled patch), their Richardson "
-        "limit. Resumable (finished cases are kept). Writes DIR/cases/, "
+        "contact radius; \"reference_patch_check\": also on the doubled patch; a fourth level at "
+        "half the finest where the three's peak force shows no steady order and an uncertainty "
+        "above 1 %, \"reference_max_levels\": 4), the Richardson limit of the last three. "
+        "Resumable (finished cases are kept). Writes DIR/cases/, "
         "DIR/cases.csv, DIR/classification.csv, DIR/guidelines.csv, DIR/answer.csv (what to use "
-        "for "
-        "2, 5 and 10 %) and DIR/study_summary.json. "
+        "for 2, 5 and 10 %) and DIR/study_summary.json. "
         "Under mpirun or srun the cases are spread over the ranks (docs/cluster.md)",
 };
 
@@ -62,7 +63,7 @@ int collect(const study::StudyDef& def, const StudyArgs& args) {
                  "study %s: %d of %zu cases in %s have not run (a shard not run yet, cancelled or "
                  "out of time: run it again, then --collect); no table written\n",
                  def.name.c_str(), unfinished,
-                 study::plan_cases(def).size() + study::plan_source_cases(def).size(),
+                 study::plan_cases(def).size() + study::plan_source_cases(def, args.out).size(),
                  args.out.string().c_str());
     return kExitFailure;
   }

@@ -85,6 +85,20 @@ SourceReferencePlan plan_source_reference(const SurfaceMesh& source, const Mater
   return p;
 }
 
+double level_size(const std::vector<double>& sizes, int level) {
+  const int n = static_cast<int>(sizes.size());
+  if (level >= 1 && level <= n) return sizes[static_cast<std::size_t>(level - 1)];
+  if (n == 0 || level < 1) return std::nan("");
+  return sizes.back() / std::pow(2.0, level - n);
+}
+
+bool wants_finer_level(const std::vector<double>& sizes, const std::vector<double>& peak_forces) {
+  if (peak_forces.size() < 3 || sizes.size() != peak_forces.size()) return false;
+  // NaN (alternating or growing changes, or a level not finite) fails both comparisons.
+  const double p = tables::richardson(sizes, peak_forces).changes_order;
+  return !(p >= kSteadyOrderMin && p <= kSteadyOrderMax);
+}
+
 SourceLevel source_level(double filtered_peak_force, double impulse, double contact_duration) {
   return {.peak_force = filtered_peak_force / (1 - run::kFilteredPeakBiasHertz),
           .impulse = impulse,

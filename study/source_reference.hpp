@@ -19,7 +19,9 @@ struct SourceReferenceOptions {
   double patch = 0.25;
   // The rest of the surface at the density of a particle of this many triangles.
   long far_faces = 2000;
-  int levels = 3;              // refined levels, h halving from one to the next
+  // Refined levels of the first round, h halving from one to the next; a fourth may follow
+  // (wants_finer_level, StudyDef's "reference_max_levels").
+  int levels = 3;
   double elements_across = 3;  // the finest h: at most Hertz's contact radius at peak over this
 };
 
@@ -58,6 +60,30 @@ inline constexpr double kCoarsestAcross = 1.5;
 // docs/study.md, "Why ballast_01's reference converged at 0.24".
 SourceReferencePlan plan_source_reference(const SurfaceMesh& source, const Material& particle,
                                           double speed, const SourceReferenceOptions& options);
+
+// The element size of level `level` (1 the coarsest) from the plan's sizes (descending, halving):
+// sizes[level − 1], and below the finest each further level half the one before (the fourth level
+// at half the third), m.
+double level_size(const std::vector<double>& sizes, int level);
+
+// The orders at which three levels' peak force is taken as asymptotic: the source reference's
+// ladders that converged measured 2.01 (rock_02), 3.20 (ballast_01) and 3.49 (gen7321), and the
+// graded fem contact 1.2-2.7 (tables::kAssumedOrderLow/High). Narrower than the range the
+// extrapolation trusts (tables::kObservedOrderMin/Max, 0.5-5): at 0.5-1 the limit still lies 1-2.4
+// last changes beyond the finest level and its error is that large (ballast_01-o1, order 0.76:
+// 4.2 %), which a further level can shrink, not the extrapolation.
+inline constexpr double kSteadyOrderMin = 1, kSteadyOrderMax = 4;
+
+// Whether levels whose peak forces are `peak_forces` (source_level's, at `sizes`, descending) want
+// one more, finer level: three or more, and the last three's changes not falling at an order in
+// [kSteadyOrderMin, kSteadyOrderMax] (tables::Extrapolation::changes_order: changes that alternate
+// or grow have none and count as not steady). Measured (reports/study-wide-source, 8 particles at
+// random orientations): rock_04-o1's levels 99 100, 100 075, 100 988 N (order 0.09, the reference
+// ± 13.1 %) and ballast_01-o1's (order 0.76, ± 4.2 %) against issue 28's ≤ 1 % median and ≤ 2.5 %
+// p90; of the 6 others 2 fell at 1.32 and 2.82 and 4 alternated (± 0.15-0.76 %), which this rule
+// also refines. Whether the level is run is the study's ("reference_max_levels"); the reference is
+// then the limit of the last three levels.
+bool wants_finer_level(const std::vector<double>& sizes, const std::vector<double>& peak_forces);
 
 // One refined level's measures. peak_force is the level's ringing-free peak (source_level), not
 // its raw maximum.
@@ -122,7 +148,9 @@ struct SourceReference {
   SourceMetric peak_force, impulse, contact_duration;
 };
 
-// From the levels at plan.sizes on the patch and, when not empty, on the doubled patch.
+// From the levels at `sizes` (level_size of each) on the patch and, when not empty, on the doubled
+// patch (as many levels). Three or four: the limit and its order are the last three levels'
+// (tables::richardson), so a fourth level (wants_finer_level) replaces the coarsest.
 SourceReference source_reference(const std::vector<double>& sizes,
                                  const std::vector<SourceLevel>& patch,
                                  const std::vector<SourceLevel>& doubled);

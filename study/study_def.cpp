@@ -359,6 +359,13 @@ void read_reference(const JsonReader& r, StudyDef& s) {
   if (r.has("reference_elements_across"))
     s.source_reference.elements_across =
         r.in_range("reference_elements_across", 1, 12, false, false);
+  // The first round's three levels, and at most one more: a fifth would cost about 2.5 times the
+  // fourth (docs/study.md, "The source reference").
+  if (r.has("reference_max_levels")) {
+    if (s.reference_kind != ReferenceKind::source)
+      r.fail("reference_max_levels", "applies only with \"reference\": \"source\"");
+    s.source_reference.max_levels = static_cast<int>(r.integer("reference_max_levels", 3, 4));
+  }
 }
 
 }  // namespace
@@ -391,7 +398,8 @@ StudyDef load_study(const fs::path& file) {
                "reference_patch_check",
                "reference_elements_across",
                "reference_contact_mass",
-               "reference_added_mass"});
+               "reference_added_mass",
+               "reference_max_levels"});
   StudyDef s;
   s.file = file;
   s.name = r.has("name") ? r.string("name") : file.stem().string();
@@ -495,6 +503,9 @@ nlohmann::ordered_json definition_json(const StudyDef& def) {
       out["reference_added_mass"] = def.source_reference.added_mass;
     }
   }
+  // Only when not the default 4: the folders of source studies keep their study.json.
+  if (def.reference_kind == ReferenceKind::source && def.source_reference.max_levels != 4)
+    out["reference_max_levels"] = def.source_reference.max_levels;
   return out;
 }
 

@@ -80,6 +80,10 @@ const char* reference_name(ReferenceKind r);
 struct SourceReferenceDef {
   // Hertz's contact radius at peak over the finest level's element size (issue 28: at least 3).
   double elements_across = 3;
+  // "reference_max_levels": at most this many levels per particle and placement; 4 lets one whose
+  // three levels' peak force shows no steady order take a fourth at half the finest size
+  // (study::wants_finer_level), 3 keeps the first three alone (the studies before 7 December 2026).
+  int max_levels = 4;
   // Also run the levels on the doubled patch (the patch check: SourceMetric::patch_change).
   bool patch_check = false;
   // "reference_contact_mass" (default true): the levels meet the refinement's contact factor by

@@ -12,10 +12,12 @@
 #include <cstdio>
 #include <ctime>
 #include <fstream>
+#include <functional>
 #include <map>
 #include <memory>
 #include <numbers>
 #include <optional>
+#include <set>
 #include <sstream>
 #include <thread>
 
@@ -305,7 +307,7 @@ scene::SceneDef case_scene(const StudyDef& def, const fs::path& out, const Parti
 scene::SceneDef source_case_scene(const StudyDef& def, const fs::path& out, const ParticlePlan& pp,
                                   const CaseKey& c) {
   const ParticlePlan::Source& src = pp.source.at(c.source_patch);
-  const double h = src.sizes.at(static_cast<std::size_t>(c.level - 1));
+  const double h = level_size(src.sizes, c.level);
   // The fem case's scene at the finest resolution with the mesh, start and rows swapped: one path.
   CaseKey coarse = c;
   coarse.source_patch = 0;
@@ -411,7 +413,7 @@ fs::path case_dir(const fs::path& out, const CaseKey& key) {
 
 int unfinished_cases(const StudyDef& def, const fs::path& out) {
   int n = 0;
-  for (const auto& plan : {plan_cases(def), plan_source_cases(def)}) {
+  for (const auto& plan : {plan_cases(def), plan_source_cases(def, out)}) {
     for (const CaseKey& k : plan) {
       const fs::path dir = case_dir(out, k);
       n += !fs::exists(dir / "case.json") && !fs::exists(dir / "failed.json");
@@ -442,25 +444,84 @@ std::vector<CaseKey> plan_cases(const StudyDef& def) {
   return out;
 }
 
-std::vector<CaseKey> plan_source_cases(const StudyDef& def) {
+namespace {
+
+CaseKey source_key(const std::string& particle, Placement pl, int patch, int level) {
+  return {.particle = particle,
+          .model = ModelKind::fem,
+          .resolution = 0,
+          .placement = pl,
+          .level = level,
+          .source_patch = patch};
+}
+
+// Per particle and placement, its levels on each patch (`levels_of` of them), coarsest first.
+std::vector<CaseKey> source_cases(
+    const StudyDef& def, const std::function<int(const std::string&, Placement)>& levels_of) {
   std::vector<CaseKey> out;
   if (def.reference_kind != ReferenceKind::source) return out;
   const int patches = def.source_reference.patch_check ? 2 : 1;
   for (const ParticleSource& p : def.particles) {
     for (Placement pl : def.placements) {
+      const int levels = levels_of(p.name, pl);
       for (int patch = 1; patch <= patches; ++patch) {
-        for (int level = 1; level <= SourceReferenceOptions{}.levels; ++level) {
-          out.push_back({.particle = p.name,
-                         .model = ModelKind::fem,
-                         .resolution = 0,
-                         .placement = pl,
-                         .level = level,
-                         .source_patch = patch});
-        }
+        for (int level = 1; level <= levels; ++level)
+          out.push_back(source_key(p.name, pl, patch, level));
       }
     }
   }
   return out;
+}
+
+// A finished level on the patch: its size over the source's R (case.json element_size_rel) and
+// its peak force (source_level of summary.json's peak_force_filtered), as the tables read them
+// (tables::source_reference_of); none unless case.json is written, the status is "ok" and both
+// are numbers.
+std::optional<std::pair<double, double>> finished_level(const fs::path& out, const CaseKey& k) {
+  const fs::path dir = case_dir(out, k);
+  if (!fs::exists(dir / "case.json") || !fs::exists(dir / "summary.json")) return std::nullopt;
+  const io::Json summary = io::read_json_file(dir / "summary.json");
+  const io::Json record = io::read_json_file(dir / "case.json");
+  const auto number = [](const io::Json& j, const char* key) {
+    return j.contains(key) && j[key].is_number() ? j[key].get<double>() : std::nan("");
+  };
+  const double size = number(record, "element_size_rel");
+  const double peak = source_level(number(summary, "peak_force_filtered"), 0, 0).peak_force;
+  if (summary.value("status", "") != "ok" || !std::isfinite(size) || !std::isfinite(peak))
+    return std::nullopt;
+  return std::pair{size, peak};
+}
+
+// How many levels one particle and placement has in OUT: the first round's, one more each time
+// every level so far finished on the patch with a peak force that wants a finer one
+// (wants_finer_level), up to the study's reference_max_levels.
+int source_levels_in(const StudyDef& def, const fs::path& out, const std::string& particle,
+                     Placement pl) {
+  int planned = SourceReferenceOptions{}.levels;
+  std::vector<double> sizes, peaks;
+  for (int level = 1; level <= planned; ++level) {
+    const auto l = finished_level(out, source_key(particle, pl, 1, level));
+    if (!l) break;
+    sizes.push_back(l->first);
+    peaks.push_back(l->second);
+    if (level == planned && planned < def.source_reference.max_levels &&
+        wants_finer_level(sizes, peaks))
+      ++planned;
+  }
+  return planned;
+}
+
+}  // namespace
+
+std::vector<CaseKey> plan_source_cases(const StudyDef& def) {
+  return source_cases(
+      def, [](const std::string&, Placement) { return SourceReferenceOptions{}.levels; });
+}
+
+std::vector<CaseKey> plan_source_cases(const StudyDef& def, const fs::path& out) {
+  return source_cases(def, [&](const std::string& particle, Placement pl) {
+    return source_levels_in(def, out, particle, pl);
+  });
 }
 
 Shard parse_shard(const std::string& text) {
@@ -899,7 +960,7 @@ cluster::TaskReport run_case(const StudyDef& def, const fs::path& out, const Par
     double h = c.relative_size * pp.radius, h_rel = c.relative_size;
     if (c.source_patch > 0) {
       const ParticlePlan::Source& src = pp.source.at(c.source_patch);
-      h = src.sizes.at(static_cast<std::size_t>(c.level - 1));
+      h = level_size(src.sizes, c.level);
       h_rel = h / src.radius;
     }
     OJson record = {
@@ -937,22 +998,24 @@ cluster::TaskReport run_case(const StudyDef& def, const fs::path& out, const Par
   }
 }
 
-// Phase 4, cases: the most expensive first, over every rank's threads.
+// Phase 4, cases: the most expensive first, over every rank's threads. Adds to `outcome` and
+// `pool` (run_study runs a second round for the source reference's finer levels).
 void run_cases(const StudyDef& def, const fs::path& out,
                const std::map<std::string, ParticlePlan>& plans, const std::vector<CaseKey>& cases,
                int jobs, cluster::World& world, bool quiet, const StopAt& stop_at,
-               StudyOutcome& outcome) {
+               StudyOutcome& outcome, cluster::PoolStats& pool) {
   std::vector<int> order(cases.size());
   for (std::size_t k = 0; k < cases.size(); ++k) order[k] = static_cast<int>(k);
   const auto weight = [&](int k) { return case_weight(cases[static_cast<std::size_t>(k)]); };
   std::stable_sort(order.begin(), order.end(), [&](int a, int b) { return weight(a) > weight(b); });
   double total_weight = 0;
   for (const CaseKey& c : cases) total_weight += case_weight(c);
-  outcome.cases = static_cast<int>(cases.size());
-  Progress progress(quiet || !world.root(), "cases", outcome.cases, total_weight, world.size() > 1);
+  const int n = static_cast<int>(cases.size());
+  outcome.cases += n;
+  Progress progress(quiet || !world.root(), "cases", n, total_weight, world.size() > 1);
   cluster::PoolStats stats;
   const std::vector<cluster::TaskReport> reports = cluster::run_tasks(
-      world, outcome.cases, order, jobs,
+      world, n, order, jobs,
       [&](int k) {
         const CaseKey& c = cases[static_cast<std::size_t>(k)];
         return run_case(def, out, plans.at(c.particle), c, stop_at);
@@ -966,9 +1029,64 @@ void run_cases(const StudyDef& def, const fs::path& out,
     outcome.ran += !r.failed && !r.skipped && !r.postponed ? 1 : 0;
     outcome.cpu_seconds += r.cpu_seconds;
   }
-  outcome.workers = stats.workers;
-  outcome.idle_fraction = stats.idle_fraction;
-  outcome.drain_seconds = stats.drain_seconds;
+  // The rounds' pools as one: idle = 1 − Σ busy / (workers × Σ wall).
+  pool.workers = std::max(pool.workers, stats.workers);
+  pool.wall_seconds += stats.wall_seconds;
+  pool.busy_seconds += stats.busy_seconds;
+  pool.drain_seconds += stats.drain_seconds;
+  pool.idle_fraction = pool.workers > 0 && pool.wall_seconds > 0
+                           ? 1 - pool.busy_seconds / (pool.workers * pool.wall_seconds)
+                           : 0;
+  outcome.workers = pool.workers;
+  outcome.idle_fraction = pool.idle_fraction;
+  outcome.drain_seconds = pool.drain_seconds;
+}
+
+// The shard's cases of `plan`, in its order.
+std::vector<CaseKey> of_shard(const StudyDef& def, const std::vector<std::size_t>& particles,
+                              const std::vector<CaseKey>& plan) {
+  std::vector<CaseKey> out;
+  for (const CaseKey& c : plan) {
+    for (std::size_t i : particles) {
+      if (def.particles[i].name == c.particle) out.push_back(c);
+    }
+  }
+  return out;
+}
+
+// The tag of round 2's list (cluster/task_pool.cpp uses 11-13 and 1000 up, world.cpp 7).
+constexpr int kFinerLevelsTag = 21;
+
+// Round 2: the source reference's finer levels that the levels just run ask for
+// (plan_source_cases with OUT) and that were not among `ran`. Rank 0 reads the folder and sends
+// every other rank the list (as indices into every level up to reference_max_levels), so that
+// all ranks run the same cases whatever their view of the shared file system.
+std::vector<CaseKey> finer_levels(const StudyDef& def, const fs::path& out,
+                                  const std::vector<std::size_t>& particles,
+                                  const std::vector<CaseKey>& ran, cluster::World& world) {
+  const std::vector<CaseKey> candidates =
+      of_shard(def, particles, source_cases(def, [&](const std::string&, Placement) {
+                 return def.source_reference.max_levels;
+               }));
+  const auto id = [](const CaseKey& c) { return c.particle + "/" + c.dir_name(); };
+  std::string text;
+  if (world.root()) {
+    std::set<std::string> done, wanted;
+    for (const CaseKey& c : ran) done.insert(id(c));
+    for (const CaseKey& c : of_shard(def, particles, plan_source_cases(def, out)))
+      wanted.insert(id(c));
+    for (std::size_t k = 0; k < candidates.size(); ++k) {
+      if (wanted.contains(id(candidates[k])) && !done.contains(id(candidates[k])))
+        text += std::to_string(k) + " ";
+    }
+    for (int r = 1; r < world.size(); ++r) world.send(r, kFinerLevelsTag, text);
+  } else {
+    text = world.receive(0, kFinerLevelsTag);
+  }
+  std::vector<CaseKey> finer;
+  std::istringstream in(text);
+  for (std::size_t k; in >> k;) finer.push_back(candidates.at(k));
+  return finer;
 }
 
 }  // namespace
@@ -999,21 +1117,29 @@ StudyOutcome run_study(const StudyDef& def, const fs::path& out, const StudyRunO
   outcome.ranks = world.size();
   const Meshes meshes = mesh_particles(def, out, particles, sources, jobs, world, options.quiet,
                                        options.stop_at, outcome);
-  std::vector<CaseKey> cases;
-  for (const auto& plan : {plan_cases(def), plan_source_cases(def)}) {
-    for (const CaseKey& c : plan) {
-      for (std::size_t i : particles) {
-        if (def.particles[i].name == c.particle) cases.push_back(c);
-      }
-    }
-  }
+  // Round 1: the study's cases and the source reference's levels that its folder already asks for
+  // (plan_source_cases with OUT: the first three, and a fourth where an earlier run's three
+  // finished and want it).
+  std::vector<CaseKey> cases = of_shard(def, particles, plan_cases(def));
+  for (const CaseKey& c : of_shard(def, particles, plan_source_cases(def, out))) cases.push_back(c);
   if (meshes.postponed > 0) {
     // The deadline passed while meshing: the cases cannot be planned without every mesh, so
     // all of them wait for the next run.
     outcome.cases = outcome.postponed = static_cast<int>(cases.size());
   } else {
     const std::map<std::string, ParticlePlan> plans = plan_particles(def, out, meshes, cases);
-    run_cases(def, out, plans, cases, jobs, world, options.quiet, options.stop_at, outcome);
+    cluster::PoolStats pool;
+    run_cases(def, out, plans, cases, jobs, world, options.quiet, options.stop_at, outcome, pool);
+    // Round 2: the fourth levels that round 1's levels ask for (wants_finer_level), on the
+    // same plans: a level starts where the others of its patch do, so the particle's duration
+    // (its largest start gap) is unchanged. Every rank runs it (finer_levels), and a shard its
+    // own particles': `--collect` refuses while one is unfinished (unfinished_cases).
+    if (def.reference_kind == ReferenceKind::source) {
+      const std::vector<CaseKey> finer = finer_levels(def, out, particles, cases, world);
+      if (!finer.empty())
+        run_cases(def, out, plans, finer, jobs, world, options.quiet, options.stop_at, outcome,
+                  pool);
+    }
   }
   outcome.wall_seconds =
       std::chrono::duration<double>(std::chrono::steady_clock::now() - wall0).count();

@@ -96,7 +96,8 @@ struct CaseKey {
   double relative_size = 0;  // that size over the equivalent radius (0 at level 0)
   // The source reference's cases ("reference": "source"; model fem, resolution 0): 1 its levels
   // on the contact patch, 2 on the doubled patch (the patch check); `level` 1 to
-  // SourceReferenceOptions::levels, coarsest first. 0: a case of the study's own models.
+  // SourceReferenceOptions::levels, coarsest first, or the fourth that the first three may ask
+  // for (plan_source_cases with OUT). 0: a case of the study's own models.
   int source_patch = 0;
   // MODEL-N-PLACEMENT, fem-N-hSIZE-PLACEMENT, sphere-PLACEMENT, or source-LK-PLACEMENT
   // (source-patch2-LK-PLACEMENT on the doubled patch)
@@ -111,20 +112,30 @@ std::vector<CaseKey> plan_cases(const StudyDef& def);
 // placement, its levels on the patch, then on the doubled patch when "reference_patch_check".
 // Their meshes are DIR/meshes/P/source/ (and source-patch2/): the contact-local surface
 // (surface.off) and the plan (mesh.json: strike point, Hertz contact radius, element sizes).
+// These are the first round's levels (SourceReferenceOptions::levels).
 std::vector<CaseKey> plan_source_cases(const StudyDef& def);
+// Every level the source reference of OUT asks for: plan_source_cases(def) and, for each particle
+// and placement whose levels on the patch all finished ("ok") with a peak force that shows no
+// steady order (wants_finer_level), one more at half the finest size (source-L4-PLACEMENT, and
+// source-patch2-L4-PLACEMENT with the patch check), up to "reference_max_levels". Read from the
+// levels' summary.json and case.json alone, so a rerun of a folder plans the same, and the tables
+// (tables::load_study_cases) load what the runner ran.
+std::vector<CaseKey> plan_source_cases(const StudyDef& def, const std::filesystem::path& out);
 
 // The folder of a case's files: OUT/cases/PARTICLE/CASE.
 std::filesystem::path case_dir(const std::filesystem::path& out, const CaseKey& key);
 
-// The cases of OUT (plan_cases and plan_source_cases) that neither finished (case.json) nor
-// failed (failed.json): those of a shard that has not run, was cancelled or ran out of time.
+// The cases of OUT (plan_cases and plan_source_cases with OUT) that neither finished (case.json)
+// nor failed (failed.json): those of a shard that has not run, was cancelled or ran out of time.
 int unfinished_cases(const StudyDef& def, const std::filesystem::path& out);
 
 // Runs every case of the shard not already done, on every rank of `options.world` with
 // `jobs` threads each, the most expensive first, handed out one at a time (docs/cluster.md).
 // Throws InputError for a particle that cannot be read, a folder of another study or a folder in
 // use; a mesh or case that fails is recorded and the rest go on. The phases: sources (every
-// rank), folder adopted and sources written (rank 0), meshes, plans (every rank), cases.
+// rank), folder adopted and sources written (rank 0), meshes, plans (every rank), cases, and a
+// second round of cases for the source reference's fourth levels that the first round's levels
+// ask for (rank 0 plans it from the folder and tells the others).
 StudyOutcome run_study(const StudyDef& def, const std::filesystem::path& out,
                        const StudyRunOptions& options);
 

@@ -40,6 +40,13 @@ void write_references_table(const StudyCases& s, const std::filesystem::path& di
         row.push_back(source ? finite_or_null(e.changes_order) : OJson());
         row.push_back(source && r->patch_checked ? finite_or_null(r->patch.metric(k)) : OJson());
       }
+      // Which levels the source's limit is from ("L1-L3", or "L2-L4" where a fourth ran), the
+      // finest one's size over the source's R, and the reference's CPU: every level's, s.
+      row.push_back(source ? OJson("L" + std::to_string(r->limit_from) + "-L" +
+                                   std::to_string(r->limit_from + 2))
+                           : OJson());
+      row.push_back(source ? finite_or_null(r->finest_size) : OJson());
+      row.push_back(source ? finite_or_null(r->cpu) : OJson());
       rows.push_back(std::move(row));
     }
   }
@@ -56,6 +63,8 @@ void write_references_table(const StudyCases& s, const std::filesystem::path& di
          {"_source_order", "_source_order_observed", "_changes_order", "_patch_change"})
       header.push_back(std::string(kMetrics[k]) + term);
   }
+  for (const char* column : {"source_limit_levels", "source_finest_size_rel", "source_cpu_seconds"})
+    header.push_back(column);
   write_csv(dir / "references.csv", header, rows);
 }
 

@@ -91,7 +91,8 @@ FemErrors quadrature(const FemErrors& a, const FemErrors& b) {
 }
 
 // The source reference of a particle and placement (StudyCases::Reference, "source"): every level
-// on the patch usable, else none; the doubled patch's levels when they all are.
+// on the patch usable (the fourth too where plan_source_cases planned one), else none; the doubled
+// patch's levels when they all are. With four levels the limit is the last three's.
 std::optional<StudyCases::Reference> source_reference_of(const StudyCases& s,
                                                          const std::string& particle,
                                                          Placement pl) {
@@ -99,8 +100,10 @@ std::optional<StudyCases::Reference> source_reference_of(const StudyCases& s,
   std::vector<double> sizes;
   std::vector<const CaseData*> patch;
   bool wide_complete = true;
+  double cpu = 0;  // every level's, on both patches
   for (const CaseData& c : s.source_cases) {
     if (c.key.particle != particle || c.key.placement != pl) continue;
+    if (std::isfinite(c.cpu)) cpu += c.cpu;
     if (!StudyCases::usable(&c)) {
       if (c.key.source_patch == 1) return std::nullopt;
       wide_complete = false;
@@ -117,15 +120,18 @@ std::optional<StudyCases::Reference> source_reference_of(const StudyCases& s,
       wide.push_back(l);
     }
   }
-  const int levels = SourceReferenceOptions{}.levels;
-  if (static_cast<int>(patch.size()) != levels) return std::nullopt;
-  const bool doubled = wide_complete && static_cast<int>(wide.size()) == levels;
+  const int levels = static_cast<int>(patch.size());
+  if (levels < SourceReferenceOptions{}.levels) return std::nullopt;
+  const bool doubled = wide_complete && wide.size() == patch.size();
   const SourceReference ref =
       source_reference(sizes, near, doubled ? wide : std::vector<SourceLevel>{});
   StudyCases::Reference r;
   r.kind = ReferenceKind::source;
   r.index = s.index_of_source(*patch.back());
   r.levels = levels;
+  r.limit_from = levels - 2;
+  r.finest_size = sizes.back();
+  r.cpu = cpu;
   r.peak = ref.peak_force.limit;
   r.source_limit[0] = ref.peak_force.limit;
   r.source_limit[1] = ref.impulse.limit;
@@ -326,7 +332,8 @@ CaseData load_case(const CaseKey& k, const fs::path& dir, StudyCases& s) {
 
 StudyCases load_study_cases(const StudyDef& def, const fs::path& dir) {
   StudyCases s{.def = def};
-  for (const CaseKey& k : plan_source_cases(def)) s.source_cases.push_back(load_case(k, dir, s));
+  for (const CaseKey& k : plan_source_cases(def, dir))
+    s.source_cases.push_back(load_case(k, dir, s));
   for (const CaseKey& k : plan_cases(def)) {
     CaseData c = load_case(k, dir, s);
     const long faces = is_sphere(k.model) ? def.reference : k.resolution;

@@ -158,6 +158,11 @@ struct StudyCases {
     // doubled patch ran.
     Extrapolation source_limit[3];
     bool patch_checked = false;
+    // The source: the coarsest of the three levels the limit is from (1, or 2 where a fourth level
+    // ran: source_reference.hpp, wants_finer_level), the finest level's size over the source's
+    // R, and the CPU of every level of it (both patches), s.
+    int limit_from = 0;
+    double finest_size = std::nan(""), cpu = std::nan("");
     Measures values;
     FemErrors discretization, geometry, uncertainty;
     FemErrors patch;  // the source: the patch check's change per metric (signed; NaN: not run)

@@ -46,7 +46,8 @@ void write_particle_classes_table(const std::vector<Classification>& rows,
 // extrapolated at (observed or assumed) and, per metric, the terms of its uncertainty and their
 // quadrature sum (docs/study.md, "The reference"): which dominates, discretization or geometry;
 // for the source reference per metric also the order and the patch check's change (the geometry
-// term empty: the geometry is the particle's).
+// term empty: the geometry is the particle's), and which levels its limit is from, the finest
+// size and the CPU of all its levels.
 void write_references_table(const StudyCases& s, const std::filesystem::path& dir);
 
 // unreferenced.csv: per particle and placement with no reference, why (the cases its reference

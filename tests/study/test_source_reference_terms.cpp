@@ -167,6 +167,68 @@ TEST(SourceReferenceTerms, AnUntrustedOrderCarriesAtLeastTheLastChange) {
   EXPECT_NEAR(e.peak_force.discretization, band * 36 / e.peak_force.limit.limit, kRoundOff);
 }
 
+// A fourth level (wants_finer_level): where the three levels' peak force shows no steady order,
+// [kSteadyOrderMin, kSteadyOrderMax] = [1, 4]; below it, oscillating, or above it.
+TEST(SourceReferenceLevels, AFourthLevelWhereThePeakShowsNoSteadyOrder) {
+  const auto power = [](double limit, double c, double p) {
+    std::vector<double> v;
+    for (double h : kSizes) v.push_back(limit + c * std::pow(h, p));
+    return v;
+  };
+  // rock_04-o1's three levels (reports/study-wide-source): changes +975, +913 N, order 0.09.
+  const std::vector<double> rock04 = {99100, 100075, 100988};
+  EXPECT_NEAR(tables::richardson(kSizes, rock04).changes_order, 0.09, 0.01);
+  EXPECT_TRUE(wants_finer_level(kSizes, rock04));
+  // ballast_01-o1's order, 0.76: trusted by the extrapolation (≥ 0.5), not steady (< 1).
+  EXPECT_TRUE(wants_finer_level(kSizes, power(6700, -2400, 0.76)));
+  // Order 2 (and 1.2, 3.5): steady, three levels are enough.
+  EXPECT_FALSE(wants_finer_level(kSizes, power(100000, 1e6, 2)));
+  EXPECT_FALSE(wants_finer_level(kSizes, power(100000, 1e6, 1.2)));
+  EXPECT_FALSE(wants_finer_level(kSizes, power(100000, 1e6, 3.5)));
+  // Alternating changes (rock_04's at the finest resolution: −2.0 %, +0.15 %) have no order.
+  EXPECT_TRUE(wants_finer_level(kSizes, {176910, 173370, 173637}));
+  // Growing changes, and an order above 4 (E34's, 6.86).
+  EXPECT_TRUE(wants_finer_level(kSizes, {1000, 1010, 1030}));
+  EXPECT_TRUE(wants_finer_level(kSizes, {66907, 62739, 62703}));
+  // Two levels show no order to judge: the first round is never cut short.
+  EXPECT_FALSE(wants_finer_level({kSizes[0], kSizes[1]}, {99100, 100075}));
+  // The fourth size is half the third's; the first three are the plan's own.
+  EXPECT_DOUBLE_EQ(level_size(kSizes, 2), kSizes[1]);
+  EXPECT_DOUBLE_EQ(level_size(kSizes, 4), kSizes[2] / 2);
+}
+
+// With four levels the reference is the Richardson limit of the last three: levels 2-4 at
+// L + c h² (L = 1000 N, c = 3000 N/R² at h = 0.04, 0.02, 0.01 R: 1004.8, 1001.2, 1000.3 N) after a
+// first level (1200 N) that is no point of that ladder. By hand: observed order log2(3.6/0.9) = 2,
+// limit 1000.3 − 0.9/(2² − 1) = 1000 N, error 1.25 × 0.3/1000. The first three alone (order 5.8,
+// outside the trusted range) would give the bracket's 999.48 N.
+TEST(SourceReferenceLevels, FourLevelsGiveTheLimitOfTheLastThree) {
+  const std::vector<double> sizes = {0.08, 0.04, 0.02, 0.01};
+  std::vector<SourceLevel> patch, doubled;
+  for (double h : sizes) {
+    const double x = h > 0.05 ? 1200 : 1000 + 3000 * h * h;
+    patch.push_back({.peak_force = x, .impulse = 1e-3 * x, .contact_duration = 1e-6 * x});
+    doubled.push_back(
+        {.peak_force = x + 4, .impulse = 1e-3 * (x + 4), .contact_duration = 1e-6 * (x + 4)});
+  }
+  ASSERT_TRUE(wants_finer_level({sizes[0], sizes[1], sizes[2]},
+                                {patch[0].peak_force, patch[1].peak_force, patch[2].peak_force}));
+  const SourceReference r = source_reference(sizes, patch, doubled);
+  // The order by bisection to 2^-100 of [1e-3, 20] and sums of a few terms of about 1000 N:
+  // round-off (kRoundOff relative) bounds both.
+  EXPECT_TRUE(r.peak_force.limit.observed);
+  EXPECT_NEAR(r.peak_force.limit.order, 2, 1e-9);
+  EXPECT_NEAR(r.peak_force.limit.limit, 1000, 1000 * kRoundOff);
+  EXPECT_NEAR(r.peak_force.limit.error, 1.25 * 0.3 / 1000, kRoundOff);
+  EXPECT_NEAR(r.impulse.limit.limit, 1, kRoundOff);
+  // The doubled patch 4 N above at every level: its limit at the patch's weight 4 N above too.
+  EXPECT_NEAR(r.peak_force.patch_change, 4.0 / 1000, kRoundOff);
+  // Not the first three's limit.
+  const SourceReference first =
+      source_reference({sizes[0], sizes[1], sizes[2]}, {patch[0], patch[1], patch[2]}, {});
+  EXPECT_GT(std::abs(first.peak_force.limit.limit - 1000), 0.4);
+}
+
 // A level's peak is its ringing-free peak (source_level): the filtered peak over 1 minus the
 // filter's bias on Hertz's pulse, 0.169 %; the reference's peak force carries the bias's
 // dependence on the pulse's shape, Hertz's less a half-sine's (0.066 %), in its uncertainty, and

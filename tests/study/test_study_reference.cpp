@@ -5,6 +5,7 @@
 #include <cmath>
 #include <filesystem>
 #include <fstream>
+#include <functional>
 #include <sstream>
 #include <string>
 #include <vector>
@@ -70,6 +71,17 @@ TEST(StudyReference, FinestIsTheDefaultAndSourceIsPartOfTheDefinition) {
   EXPECT_NE(first_difference(nlohmann::json::parse(definition_json(unbudgeted).dump()),
                              nlohmann::json::parse(j.dump())),
             "");
+  // At most four levels by default, written only when not: a folder run before keeps its
+  // study.json; 3 keeps the first round alone.
+  EXPECT_EQ(source.source_reference.max_levels, 4);
+  EXPECT_FALSE(j.contains("reference_max_levels"));
+  const StudyDef three =
+      load_study(study_file("three", R"(, "reference": "source", "reference_max_levels": 3)"));
+  EXPECT_EQ(three.source_reference.max_levels, 3);
+  EXPECT_EQ(definition_json(three)["reference_max_levels"], 3);
+  EXPECT_EQ(load_study(study_file("four", R"(, "reference": "source", "reference_max_levels": 4)"))
+                .source_reference.max_levels,
+            4);
   // Another reference is another study: a folder of the one refuses the other.
   EXPECT_NE(first_difference(nlohmann::json::parse(definition_json(finest).dump()),
                              nlohmann::json::parse(j.dump())),
@@ -90,7 +102,12 @@ TEST(StudyReference, BadValuesAreRefusedNamingFileAndKey) {
       {R"(, "reference": "source", "reference_added_mass": -1e-4)", "reference_added_mass"},
       {R"(, "reference": "source", "reference_added_mass": 1)", "reference_added_mass"},
       {R"(, "reference": "source", "reference_contact_mass": false, "reference_added_mass": 1e-4)",
-       "reference_added_mass"}};
+       "reference_added_mass"},
+      {R"(, "reference": "source", "reference_max_levels": 5)", "reference_max_levels"},
+      {R"(, "reference": "source", "reference_max_levels": 2)", "reference_max_levels"},
+      {R"(, "reference": "source", "reference_max_levels": 3.5)", "reference_max_levels"},
+      {R"(, "reference": "source", "reference_max_levels": "4")", "reference_max_levels"},
+      {R"(, "reference_max_levels": 3)", "reference_max_levels"}};
   for (const auto& [extra, key] : bad) {
     try {
       load_study(study_file("bad", extra));
@@ -124,8 +141,8 @@ TEST(StudyReference, SourceCasesPerParticlePlacementPatchAndLevel) {
 // The source levels at h = 0.08, 0.04, 0.02 R converging as L + c h^p per metric (p = 1.5 in
 // peak force, 2 in impulse, 1 in duration), the doubled patch's levels offset by a constant.
 constexpr double kPeak = 1000, kImpulse = 0.5, kDuration = 1e-4, kFirstContact = 5e-5;
-constexpr double kSizes[] = {0.08, 0.04, 0.02};
-constexpr double kPatchOffset = 0.004;  // of each limit, on the doubled patch
+constexpr double kSizes[] = {0.08, 0.04, 0.02, 0.01};  // the fourth where the first three ask
+constexpr double kPatchOffset = 0.004;                 // of each limit, on the doubled patch
 // The reference's peak-force term for the filter's bias on a pulse between a half-sine and Hertz's.
 constexpr double kFilterTerm = run::kFilteredPeakBiasHertz - run::kFilteredPeakBiasHalfSine;
 
@@ -141,24 +158,42 @@ StudyDef source_def(bool patch_check) {
   return def;
 }
 
-fs::path write_source_study(const StudyDef& def, const std::string& name, double peak_order = 1.5) {
+// A source level as `asperity study` leaves it: the ringing-free peak `smooth_peak` on the patch
+// (the doubled patch's scaled by 1 + kPatchOffset).
+void write_source_level(const fs::path& dir, const CaseKey& k, double smooth_peak) {
+  const double h = kSizes[k.level - 1], shift = k.source_patch == 2 ? 1 + kPatchOffset : 1;
+  // The filtered peak is the ringing-free one less the filter's bias on Hertz's pulse
+  // (source_level); the raw peak has a ringing of 3, 1, 2 and 1 % by level, no power of h,
+  // which the reference must not see.
+  const double smooth = smooth_peak * shift;
+  const double ringing[] = {0.03, 0.01, 0.02, 0.01};
+  test::write_case(dir, k,
+                   {.peak = smooth * (1 + ringing[k.level - 1]),
+                    .impulse = kImpulse * shift + 2 * h * h,
+                    .duration = kDuration * shift + 1e-4 * h,
+                    .first_contact = kFirstContact + 1e-7 * h,
+                    .cpu_seconds = 10.0 * k.level,
+                    .element_size_rel = h,
+                    .peak_filtered = smooth * (1 - run::kFilteredPeakBiasHertz)});
+}
+
+// Every level the study asks for, the first round's and then those the folder's levels ask for
+// (plan_source_cases with the folder), each at the ringing-free peak `peak(h)`.
+fs::path write_source_levels(const StudyDef& def, const std::string& name,
+                             const std::function<double(double)>& peak) {
   const fs::path dir = scratch(name);
-  for (const CaseKey& k : plan_source_cases(def)) {
-    const double h = kSizes[k.level - 1], shift = k.source_patch == 2 ? 1 + kPatchOffset : 1;
-    // The ringing-free peak a power law; the filtered peak that less the filter's bias on
-    // Hertz's pulse (source_level); the raw peak with a ringing of 3, 1 and 2 % by level, no
-    // power of h, which the reference must not see.
-    const double smooth = kPeak * shift + 3000 * std::pow(h, peak_order);
-    const double ringing[] = {0.03, 0.01, 0.02};
-    test::write_case(dir, k,
-                     {.peak = smooth * (1 + ringing[k.level - 1]),
-                      .impulse = kImpulse * shift + 2 * h * h,
-                      .duration = kDuration * shift + 1e-4 * h,
-                      .first_contact = kFirstContact + 1e-7 * h,
-                      .cpu_seconds = 10.0 * k.level,
-                      .element_size_rel = h,
-                      .peak_filtered = smooth * (1 - run::kFilteredPeakBiasHertz)});
+  for (const CaseKey& k : plan_source_cases(def))
+    write_source_level(dir, k, peak(kSizes[k.level - 1]));
+  for (const CaseKey& k : plan_source_cases(def, dir)) {
+    if (!fs::exists(case_dir(dir, k) / "case.json"))
+      write_source_level(dir, k, peak(kSizes[k.level - 1]));
   }
+  return dir;
+}
+
+fs::path write_source_study(const StudyDef& def, const std::string& name, double peak_order = 1.5) {
+  const fs::path dir = write_source_levels(
+      def, name, [&](double h) { return kPeak + 3000 * std::pow(h, peak_order); });
   // The sphere, 5 % above the reference in peak force, 2 % below in impulse.
   for (const CaseKey& k : plan_cases(def))
     test::write_case(dir, k,
@@ -233,10 +268,13 @@ TEST(SourceReferenceTable, LimitOrderPatchChangeAndEveryErrorAgainstTheParticle)
   EXPECT_NEAR(s.err_fem[s.index_of(*sphere)].impulse, -0.02, 1e-9);
   // The classification compares with the finest level's curve.
   EXPECT_EQ(s.reference_case(*r).key.dir_name(), "source-L3-lowest");
+  EXPECT_EQ(s.source_cases.size(), 6u);  // order 1.5: no fourth level
 
   tables::write_references_table(s, dir);
   const auto t = read_csv(dir / "references.csv");
   ASSERT_EQ(t.size(), 2u);
+  EXPECT_EQ(cell(t, 1, "source_limit_levels"), "L1-L3");
+  EXPECT_EQ(cell(t, 1, "levels"), "3");
   EXPECT_EQ(cell(t, 1, "reference"), "source");
   EXPECT_EQ(cell(t, 1, "resolution"), "");     // the source has no triangle count
   EXPECT_EQ(cell(t, 1, "geometry_from"), "");  // nor a geometry term
@@ -252,7 +290,8 @@ TEST(SourceReferenceTable, LimitOrderPatchChangeAndEveryErrorAgainstTheParticle)
 TEST(SourceReferenceTable, SlowLevelsShowTheirOrderBesideTheAssumedOne) {
   // Peak force levels converging at order 0.24 (ballast_01's, measured): below the 0.5 the
   // extrapolation trusts, so the limit is the assumed bracket's (order 1.95, not observed), and
-  // references.csv keeps the levels' own 0.24 beside it.
+  // references.csv keeps the levels' own 0.24 beside it. (A fourth level ran: 0.24 is no steady
+  // order; levels 2-4 show it again.)
   const StudyDef def = source_def(false);
   const fs::path dir = write_source_study(def, "slow", 0.24);
   const tables::StudyCases s = tables::load_study_cases(def, dir);
@@ -265,6 +304,102 @@ TEST(SourceReferenceTable, SlowLevelsShowTheirOrderBesideTheAssumedOne) {
   const auto t = read_csv(dir / "references.csv");
   EXPECT_EQ(cell(t, 1, "peak_force_source_order_observed"), "false");
   EXPECT_NEAR(std::stod(cell(t, 1, "peak_force_changes_order")), 0.24, 1e-9);
+  EXPECT_EQ(cell(t, 1, "source_limit_levels"), "L2-L4");
+}
+
+// The fourth level as planned from the folder (plan_source_cases with OUT): only once the first
+// three on the patch finished, only where their peak force shows no steady order, on both patches,
+// and never beyond "reference_max_levels".
+TEST(SourceReferenceLevels, AFourthLevelIsPlannedFromTheFinishedThree) {
+  StudyDef def = source_def(true);
+  const auto names = [](const std::vector<CaseKey>& keys) {
+    std::vector<std::string> v;
+    for (const CaseKey& k : keys) v.push_back(k.dir_name());
+    return v;
+  };
+  // rock_04-o1's levels (order 0.09).
+  const double rock04[] = {99100, 100075, 100988};
+  const fs::path dir = scratch("plan_l4");
+  EXPECT_EQ(plan_source_cases(def, dir).size(), 6u);  // nothing ran yet: the first round
+  for (const CaseKey& k : plan_source_cases(def)) write_source_level(dir, k, rock04[k.level - 1]);
+  const std::vector<std::string> planned = names(plan_source_cases(def, dir));
+  const std::vector<std::string> expected = {"source-L1-lowest",        "source-L2-lowest",
+                                             "source-L3-lowest",        "source-L4-lowest",
+                                             "source-patch2-L1-lowest", "source-patch2-L2-lowest",
+                                             "source-patch2-L3-lowest", "source-patch2-L4-lowest"};
+  EXPECT_EQ(planned, expected);
+  // `--collect` waits for them (and for the sphere case, not written here).
+  EXPECT_EQ(unfinished_cases(def, dir), 2 + 1);
+  // Planned again from the same folder: the same (a rerun runs only what is missing).
+  EXPECT_EQ(names(plan_source_cases(def, dir)), expected);
+  // "reference_max_levels": 3, the first round alone.
+  StudyDef three = def;
+  three.source_reference.max_levels = 3;
+  EXPECT_EQ(plan_source_cases(three, dir).size(), 6u);
+  // A level of the three not finished (failed): no fourth yet.
+  const CaseKey second = plan_source_cases(def)[1];
+  fs::remove(case_dir(dir, second) / "case.json");
+  std::ofstream(case_dir(dir, second) / "failed.json") << R"({"message": "m"})";
+  EXPECT_EQ(plan_source_cases(def, dir).size(), 6u);
+  // Levels at a steady order (1.5): none.
+  const fs::path steady = write_source_study(def, "plan_steady");
+  EXPECT_EQ(plan_source_cases(def, steady).size(), 6u);
+  // Alternating levels: a fourth.
+  const double alternating[] = {176910, 173370, 173637};
+  const fs::path alt = scratch("plan_alternating");
+  for (const CaseKey& k : plan_source_cases(def))
+    write_source_level(alt, k, alternating[k.level - 1]);
+  EXPECT_EQ(plan_source_cases(def, alt).size(), 8u);
+}
+
+// Four levels in the table: the limit of levels 2-4 (the hand value of
+// SourceReferenceLevels.FourLevelsGiveTheLimitOfTheLastThree: L + c h² at h = 0.04, 0.02, 0.01 R,
+// limit 1000.3 − 0.9/3 = 1000 N after a first level of 1200 N), which levels it is from, and the
+// reference's CPU over all eight levels; a fourth level missing leaves the particle unreferenced,
+// naming it.
+TEST(SourceReferenceLevels, TheTableTakesTheLastThreeOfFourAndTheirCpu) {
+  const StudyDef def = source_def(true);
+  const fs::path dir = write_source_levels(
+      def, "four", [](double h) { return h > 0.05 ? 1200 : 1000 + 3000 * h * h; });
+  const tables::StudyCases s = tables::load_study_cases(def, dir);
+  ASSERT_EQ(s.source_cases.size(), 8u);
+  const tables::StudyCases::Reference* r = s.reference("p", Placement::lowest);
+  ASSERT_NE(r, nullptr);
+  EXPECT_EQ(r->levels, 4);
+  EXPECT_EQ(r->limit_from, 2);
+  // Exact to round-off (1e-12 relative: sums of a few terms of about 1000 N, the filter's bias
+  // divided out again) and the order's bisection (2^-100 of its bracket).
+  EXPECT_NEAR(r->values.peak, 1000, 1e-9);
+  EXPECT_NEAR(r->peak.order, 2, 1e-9);
+  EXPECT_TRUE(r->peak.observed);
+  EXPECT_NEAR(r->patch.peak, kPatchOffset, 1e-9);
+  EXPECT_DOUBLE_EQ(r->finest_size, 0.01);
+  EXPECT_EQ(s.reference_case(*r).key.dir_name(), "source-L4-lowest");
+  // CPU 10 s × level on each patch: (10 + 20 + 30 + 40) × 2.
+  EXPECT_DOUBLE_EQ(r->cpu, 200);
+  tables::write_references_table(s, dir);
+  const auto t = read_csv(dir / "references.csv");
+  ASSERT_EQ(t.size(), 2u);
+  EXPECT_EQ(cell(t, 1, "levels"), "4");
+  EXPECT_EQ(cell(t, 1, "source_limit_levels"), "L2-L4");
+  EXPECT_EQ(cell(t, 1, "source_finest_size_rel"), "0.01");
+  EXPECT_DOUBLE_EQ(std::stod(cell(t, 1, "source_cpu_seconds")), 200);
+  EXPECT_NEAR(std::stod(cell(t, 1, "peak_force")), 1000, 1e-9);
+
+  // The fourth level on the patch missing (not run yet, or its run killed): no reference, and
+  // unreferenced.csv names it.
+  const CaseKey fourth{.particle = "p",
+                       .model = ModelKind::fem,
+                       .placement = Placement::lowest,
+                       .level = 4,
+                       .source_patch = 1};
+  fs::remove(case_dir(dir, fourth) / "case.json");
+  const tables::StudyCases u = tables::load_study_cases(def, dir);
+  EXPECT_EQ(u.reference("p", Placement::lowest), nullptr);
+  tables::write_unreferenced_table(u, dir);
+  const auto why = read_csv(dir / "unreferenced.csv");
+  ASSERT_EQ(why.size(), 2u);
+  EXPECT_EQ(cell(why, 1, "why"), "source-L4-lowest missing");
 }
 
 TEST(SourceReferenceTable, PatchCheckLeftOutWhereALevelOfItFailedAndNoReferenceWithoutEveryLevel) {

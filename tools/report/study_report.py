@@ -809,10 +809,12 @@ def axes_section(doc, study, cases):
 
 def source_reference_section(doc, references):
     """The source reference ("reference": "source" in study.json; references.csv's source columns): the particle
-    itself, its source surface refined at the strike point in three levels, and the terms of its uncertainty."""
+    itself, its source surface refined at the strike point in three levels (a fourth where their peak force shows no
+    steady order), and the terms of its uncertainty."""
     doc.p("Per particle: the reference is the particle itself (\"reference\": \"source\"): its source surface kept "
-          "around the strike point, refined there in three levels, and their Richardson limit, with the order and "
-          "whether it was observed; its uncertainty adds in quadrature the extrapolation's estimated error "
+          "around the strike point, refined there in three levels (a fourth at half the finest size where the three's "
+          "peak force shows no steady order: the limit is then of levels 2-4), and their Richardson limit, with the "
+          "order and whether it was observed; its uncertainty adds in quadrature the extrapolation's estimated error "
           "(discretization) and, where the doubled patch ran, the patch check's change ('-' where not run). An "
           "assumed order is followed by the levels' own order where they fall monotonically outside the range the "
           "extrapolation trusts (0.5-5): those levels are not asymptotic. Every error of this report is against it: "
@@ -826,12 +828,14 @@ def source_reference_section(doc, references):
             said = ("observed " if observed else "assumed ") + fmt(order, 3)
             if not observed and changes:  # the levels' own order, outside the trusted range
                 said += f" (levels: {fmt(changes, 2)})"
-        rows.append([r["particle"], r["placement"], fmt(r["peak_force"]), said,
+        # Which levels the limit is from (references.csv before the fourth level: the three).
+        levels = r.get("source_limit_levels") or "L1-L3"
+        rows.append([r["particle"], r["placement"], levels, fmt(r["peak_force"]), said,
                      pct(r["peak_force_discretization"]),
                      pct(r["peak_force_patch_change"]) if r["peak_force_patch_change"] else "-",
                      pct(r["peak_force_uncertainty"]), pct(r["contact_duration_uncertainty"]),
                      pct(r["impulse_uncertainty"])])
-    doc.table(["particle", "placement", "peak force (N)", "order (peak)", "discretization", "patch check",
+    doc.table(["particle", "placement", "levels", "peak force (N)", "order (peak)", "discretization", "patch check",
                "uncertainty (peak)", "uncertainty (duration)", "uncertainty (impulse)"], rows)
 
 
