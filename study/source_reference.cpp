@@ -96,7 +96,12 @@ bool wants_finer_level(const std::vector<double>& sizes, const std::vector<doubl
   if (peak_forces.size() < 3 || sizes.size() != peak_forces.size()) return false;
   // NaN (alternating or growing changes, or a level not finite) fails both comparisons.
   const double p = tables::richardson(sizes, peak_forces).changes_order;
-  return !(p >= kSteadyOrderMin && p <= kSteadyOrderMax);
+  if (p >= kSteadyOrderMin && p <= kSteadyOrderMax) return false;
+  // Not steady: a finer level where the three leave the limit less certain than kFinerLevelAbove
+  // (NaN, no estimate, counts as uncertain).
+  std::vector<SourceLevel> levels;
+  for (const double f : peak_forces) levels.push_back({.peak_force = f});
+  return !(source_reference(sizes, levels, {}).peak_force.discretization <= kFinerLevelAbove);
 }
 
 SourceLevel source_level(double filtered_peak_force, double impulse, double contact_duration) {

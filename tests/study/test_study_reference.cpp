@@ -344,23 +344,29 @@ TEST(SourceReferenceLevels, AFourthLevelIsPlannedFromTheFinishedThree) {
   // Levels at a steady order (1.5): none.
   const fs::path steady = write_source_study(def, "plan_steady");
   EXPECT_EQ(plan_source_cases(def, steady).size(), 6u);
-  // Alternating levels: a fourth.
+  // Alternating levels whose last change is 0.15 % (rock_04's at the finest resolution): within
+  // the 1 % (kFinerLevelAbove), none; the same shape ending in a 1.5 % change: a fourth.
   const double alternating[] = {176910, 173370, 173637};
   const fs::path alt = scratch("plan_alternating");
   for (const CaseKey& k : plan_source_cases(def))
     write_source_level(alt, k, alternating[k.level - 1]);
-  EXPECT_EQ(plan_source_cases(def, alt).size(), 8u);
+  EXPECT_EQ(plan_source_cases(def, alt).size(), 6u);
+  const double wide[] = {176910, 170000, 172550};
+  const fs::path alt_wide = scratch("plan_alternating_wide");
+  for (const CaseKey& k : plan_source_cases(def))
+    write_source_level(alt_wide, k, wide[k.level - 1]);
+  EXPECT_EQ(plan_source_cases(def, alt_wide).size(), 8u);
 }
 
 // Four levels in the table: the limit of levels 2-4 (the hand value of
 // SourceReferenceLevels.FourLevelsGiveTheLimitOfTheLastThree: L + c h² at h = 0.04, 0.02, 0.01 R,
-// limit 1000.3 − 0.9/3 = 1000 N after a first level of 1200 N), which levels it is from, and the
+// limit 1003 − 9/3 = 1000 N after a first level of 1060 N), which levels it is from, and the
 // reference's CPU over all eight levels; a fourth level missing leaves the particle unreferenced,
 // naming it.
 TEST(SourceReferenceLevels, TheTableTakesTheLastThreeOfFourAndTheirCpu) {
   const StudyDef def = source_def(true);
   const fs::path dir = write_source_levels(
-      def, "four", [](double h) { return h > 0.05 ? 1200 : 1000 + 3000 * h * h; });
+      def, "four", [](double h) { return h > 0.05 ? 1060 : 1000 + 30000 * h * h; });
   const tables::StudyCases s = tables::load_study_cases(def, dir);
   ASSERT_EQ(s.source_cases.size(), 8u);
   const tables::StudyCases::Reference* r = s.reference("p", Placement::lowest);
