@@ -192,6 +192,20 @@ TEST(ContactStep, MassWithinABudgetLowersTheFactorAndKeepsTheBudget) {
   // The factor it reports is the one it meets on the predicted step (within the 2 % the search
   // for the asked factor stops at, as above).
   EXPECT_NEAR(element / c.critical, w.contact_factor, 0.02 * w.contact_factor);
+  // A budget of 0.9 of the body: the mass alone would take the factor below 1 (the elements'
+  // own step lengthened too); it stops at kLeastContactFactor, within the bisection's 6 halvings
+  // (a few % of it), adding less than the budget.
+  def.contact.max_added_mass = 0.9;
+  const World floor = make_world(def);
+  double added_floor = 0;
+  for (const double x : floor.added_mass) added_floor += x;
+  std::printf("budget 0.9: factor %.4g, adds %.4g\n", floor.contact_factor,
+              added_floor / body_mass);
+  EXPECT_GE(floor.contact_factor, kLeastContactFactor);
+  EXPECT_LE(floor.contact_factor, 1.1 * kLeastContactFactor);
+  EXPECT_LT(added_floor, 0.9 * body_mass);
+  EXPECT_NEAR(element / critical_step(floor).critical, floor.contact_factor,
+              0.02 * floor.contact_factor);
 }
 
 // Two equal coarse balls head-on at ±v (momentum zero), the contact factor met by each fix. The
