@@ -5,7 +5,6 @@
 #include <stdexcept>
 
 #include "solver/core/error.hpp"
-#include "solver/geometry/morton_node_order.hpp"
 #include "solver/geometry/refined_sphere.hpp"
 #include "solver/geometry/simplify_edge_collapse.hpp"
 #include "solver/geometry/write_mesh.hpp"
@@ -75,7 +74,6 @@ PreparedParticle finish(PreparedParticle p, const PipelineOptions& options) {
     } catch (const InputError& e) {  // a budget passed: name the input it was passed on
       throw InputError(p.source_name + ": " + e.what());
     }
-    number_nodes_along_morton_curve(p.tets);  // locality only: the same results to the bit
     p.seconds_tetrahedralize = seconds_since(t0);
     p.quality = tet_quality(p.tets);
   }
