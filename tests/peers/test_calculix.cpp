@@ -61,7 +61,7 @@ fs::path scratch(const std::string& name) {
 
 // Level n's refinement s = √2ⁿ as one double, whichever triple holds it and whatever wrote the
 // scene: a power of two, or √2 scaled by one (both exact). asperity's mesher is not continuous in
-// its element-size keys: computed as coarsest / √2^i, s = 1 was 1 − 2⁻⁵³ in the triple from s = 2
+// its element-size keys: computed as coarsest / √2^i, s = 1 was 1 − 2⁻⁵² in the triple from s = 2
 // and 1 in the triple from √2, and the scan AAA's two meshes of "s = 1" differed (5 481 and 5 411
 // nodes; filtered peak 54.87 and 54.93 N, duration 9.061 and 9.040 ms: reports/peers/calculix/
 // README.md, "One level, one mesh"); so did the sphere's at s = 1 at every a/R (0.08: 80 588 and
@@ -194,7 +194,7 @@ TEST(CalculiX, CoarseSphereConservesMomentumAndLiesOnTheStiffSideOfTheFiniteSphe
 
 // asperity's sequence on the same sphere and law (scenes/hertz_series.hpp's block levels, the
 // linear law) at s = √2ⁿ, √2ⁿ⁻¹, √2ⁿ⁻² (level_s; n the coarsest), and its estimates. Until
-// 2026-12-07 the levels were 2 / √2^i, so "√2" and "1" were one ulp low (1.414213562373095,
+// 2026-12-07 the levels were 2 / √2^i, so "√2" was one double low and "1" two (1.414213562373095,
 // 0.9999999999999998), which asperity's mesher can mesh differently (level_s).
 Limit asperity_sequence(double a_over_r, int coarsest) {
   Material m = fdem::scenes::rubbery();
@@ -678,7 +678,7 @@ TEST(CalculiXRecordedLevels, ScanAAAsFinerLevelsFindNeitherCodeWrong) {
   // 2.70 in the peak, 2.66 and 1.91 in the duration, all trusted; the limits lie 2.28 % (peak)
   // and 3.8 % (duration) apart, within their combined errors (3.4 and 5.2 %), not within 2 %.
   // (asperity's s = 1 is the gate's mesh of s = 1 since the levels are one double each,
-  // level_s; with the mesh of 1 − 2⁻⁵³ it was 2.05 % and 3.4 % within 3.2 and 4.7 %.)
+  // level_s; with the mesh of 1 − 2⁻⁵² it was 2.05 % and 3.4 % within 3.2 and 4.7 %.)
   const Levels n =
       levels_of(rows, {"scan_AAA", {"1.4142", "1.0000", "0.7071"}, {"1.4142", "1.0000", "0.7071"}});
   for (const Agreement& g : {particle_estimates("filtered peak", n.peak[0], n.peak[1]),
