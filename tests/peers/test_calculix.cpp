@@ -59,6 +59,18 @@ fs::path scratch(const std::string& name) {
   return d;
 }
 
+// Level n's refinement s = √2ⁿ as one double, whichever triple holds it and whatever wrote the
+// scene: a power of two, or √2 scaled by one (both exact). asperity's mesher is not continuous in
+// its element-size keys: computed as coarsest / √2^i, s = 1 was 1 − 2⁻⁵² in the triple from s = 2
+// and 1 in the triple from √2, and the scan AAA's two meshes of "s = 1" differed (5 481 and 5 411
+// nodes; filtered peak 54.87 and 54.93 N, duration 9.061 and 9.040 ms: reports/peers/calculix/
+// README.md, "One level, one mesh"); so did the sphere's at s = 1 at every a/R (0.08: 80 588 and
+// 80 249 tetrahedra, "The sphere gates at exact s"). Both gates' levels come from here. gmsh reads
+// the keys at 12 digits, so CalculiX's meshes do not see such a difference.
+double level_s(int n) {
+  return std::ldexp(n % 2 != 0 ? std::numbers::sqrt2 : 1.0, static_cast<int>(std::floor(n / 2.0)));
+}
+
 // The Hertz sphere at contact size a/R and refinement s as a contract scene (the element-size
 // keys of scenes/hertz_series.hpp's level_mesh), small-strain linear like the reference, and run
 // through the CalculiX adapter.
@@ -121,10 +133,11 @@ struct Limit {
   RichardsonEstimate peak, duration;
 };
 
-// The sequence at refinements s, s/√2, s/2 and its estimates (filtered peak, duration).
-Limit calculix_sequence(double a_over_r, double s0, std::vector<Measured>& levels) {
+// The sequence at refinements √2ⁿ, √2ⁿ⁻¹, √2ⁿ⁻² (level_s; n the coarsest) and its estimates
+// (filtered peak, duration).
+Limit calculix_sequence(double a_over_r, int coarsest, std::vector<Measured>& levels) {
   for (int i = 0; i < 3; ++i) {
-    const double s = s0 / std::pow(std::sqrt(2.0), i);
+    const double s = level_s(coarsest - i);
     levels.push_back(
         calculix_level(a_over_r, s, std::to_string(a_over_r) + "-" + std::to_string(i)));
     const Measured& l = levels.back();
@@ -180,14 +193,16 @@ TEST(CalculiX, CoarseSphereConservesMomentumAndLiesOnTheStiffSideOfTheFiniteSphe
 }
 
 // asperity's sequence on the same sphere and law (scenes/hertz_series.hpp's block levels, the
-// linear law) at s, s/√2, s/2, and its estimates.
-Limit asperity_sequence(double a_over_r, double s0) {
+// linear law) at s = √2ⁿ, √2ⁿ⁻¹, √2ⁿ⁻² (level_s; n the coarsest), and its estimates. Until
+// 2026-12-07 the levels were 2 / √2^i, so "√2" was one double low and "1" two (1.414213562373095,
+// 0.9999999999999998), which asperity's mesher can mesh differently (level_s).
+Limit asperity_sequence(double a_over_r, int coarsest) {
   Material m = fdem::scenes::rubbery();
   const double speed = fdem::hertz::speed_for(a_over_r, m);
   std::vector<fdem::hertz::Level> l;
   for (int i = 0; i < 3; ++i) {
-    l.push_back(fdem::hertz::run_level(fdem::hertz::Setup::block, s0 / std::pow(std::sqrt(2.0), i),
-                                       speed, true, {.law = ElasticLaw::linear}));
+    l.push_back(fdem::hertz::run_level(fdem::hertz::Setup::block, level_s(coarsest - i), speed,
+                                       true, {.law = ElasticLaw::linear}));
     std::printf(
         "asperity a/R %.3f s %.3f tets %ld cpu %.1f s: peak %+.3f %% filtered %+.3f %% "
         "duration %+.3f %% impulse/2mv %.5f\n",
@@ -225,8 +240,8 @@ class CalculiXFull : public ::testing::TestWithParam<double> {};
 TEST_P(CalculiXFull, LimitsAgreeWithAsperity) {
   const double a_over_r = GetParam();
   std::vector<Measured> levels;
-  const Limit c = calculix_sequence(a_over_r, std::sqrt(2.0), levels);
-  const Limit a = asperity_sequence(a_over_r, 2.0);
+  const Limit c = calculix_sequence(a_over_r, 1, levels);  // s = √2, 1, 1/√2
+  const Limit a = asperity_sequence(a_over_r, 2);          // s = 2, √2, 1
   expect_limits_agree("filtered peak", a.peak, c.peak);
   expect_limits_agree("duration", a.duration, c.duration);
 }
@@ -256,17 +271,6 @@ struct ParticleCase {
 
 constexpr double kParticleSpeed = 0.2;  // m/s
 constexpr double kParticleGap = 2e-4;   // m, the lowest vertex above the plane at the start
-
-// Level n's refinement s = √2ⁿ as one double, whichever triple holds it and whatever wrote the
-// scene: a power of two, or √2 scaled by one (both exact). asperity's mesher is not continuous in
-// its element-size keys: computed as coarsest / √2^i, s = 1 was 1 − 2⁻⁵³ in the triple from s = 2
-// and 1 in the triple from √2, and the scan AAA's two meshes of "s = 1" differed (5 481 and 5 411
-// nodes; filtered peak 54.87 and 54.93 N, duration 9.061 and 9.040 ms: reports/peers/calculix/
-// README.md, "One level, one mesh"). gmsh reads the keys at 12 digits, so CalculiX's meshes do not
-// see such a difference.
-double level_s(int n) {
-  return std::ldexp(n % 2 != 0 ? std::numbers::sqrt2 : 1.0, static_cast<int>(std::floor(n / 2.0)));
-}
 
 // The particle's 500-triangle surface, written to `dir`/surface.off: generated from its set entry
 // (written as `asperity particle --set` writes it, then read back, as `asperity mesh` reads it).
@@ -674,7 +678,7 @@ TEST(CalculiXRecordedLevels, ScanAAAsFinerLevelsFindNeitherCodeWrong) {
   // 2.70 in the peak, 2.66 and 1.91 in the duration, all trusted; the limits lie 2.28 % (peak)
   // and 3.8 % (duration) apart, within their combined errors (3.4 and 5.2 %), not within 2 %.
   // (asperity's s = 1 is the gate's mesh of s = 1 since the levels are one double each,
-  // level_s; with the mesh of 1 − 2⁻⁵³ it was 2.05 % and 3.4 % within 3.2 and 4.7 %.)
+  // level_s; with the mesh of 1 − 2⁻⁵² it was 2.05 % and 3.4 % within 3.2 and 4.7 %.)
   const Levels n =
       levels_of(rows, {"scan_AAA", {"1.4142", "1.0000", "0.7071"}, {"1.4142", "1.0000", "0.7071"}});
   for (const Agreement& g : {particle_estimates("filtered peak", n.peak[0], n.peak[1]),
