@@ -8,8 +8,9 @@
 // every node receives its element forces in the same sequence as before: the forces, and every
 // result built from them, are the same to the bit (tests/geometry/test_morton_node_order.cpp).
 // Measured on a source-reference level of 45 327 tetrahedra (docs/performance.md, "Nodes along a
-// Morton curve"): the element loop 1.18 times faster. Used on the meshes a run builds its world
-// from (run::mesh_body); the pipeline's own meshes keep their surface's vertices first.
+// Morton curve"): the element loop 1.18 times faster. Used on the deformable bodies' meshes a run
+// builds its world from (run::mesh_body); the pipeline's own meshes keep their surface's vertices
+// first.
 #pragma once
 
 #include <vector>

@@ -156,12 +156,13 @@ TetMesh mesh_body(const scene::MeshShape& m, const std::string& key, bool deform
     o.tet.element_size.far = m.element_size_far;
   }
   o.element_size_key = key + "shape.element_size";
-  // The pipeline keeps the surface's vertices first (node i is vertex i); the world needs no such
-  // numbering, and its element loop runs faster with nodes close in space close in memory
-  // (geometry/morton_node_order.hpp: the same results to the bit).
+  // The pipeline keeps the surface's vertices first (node i is vertex i); a deformable body's
+  // world needs no such numbering, and its element loop runs faster with nodes close in space
+  // close in memory (geometry/morton_node_order.hpp: the same results to the bit). A rigid body
+  // has no element loop, and its mass properties are sums over its nodes: it keeps its numbering.
   const auto make = [&] {
     TetMesh t = geometry::prepare_particle(m.file, o).tets;
-    geometry::number_nodes_along_morton_curve(t);
+    if (deformable) geometry::number_nodes_along_morton_curve(t);
     return t;
   };
   MeshKey mesh_key = run::mesh_key(m, deformable);
