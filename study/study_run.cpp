@@ -42,6 +42,7 @@
 #include "study/case_weight.hpp"
 #include "study/source_reference.hpp"
 #include "study/study_meshes.hpp"
+#include "study/tables/study_cases.hpp"
 
 namespace asperity::study {
 namespace fs = std::filesystem;
@@ -86,15 +87,9 @@ bool stored_contact_open_at_end(const fs::path& dir) {
   try {
     const OJson summary = OJson::parse(read_text(dir / "summary.json"));
     if (summary.value("status", std::string()) != "ok") return false;
-    std::istringstream rows(read_text(dir / "force.csv"));
-    std::string line, last;
-    while (std::getline(rows, line)) {
-      if (!line.empty()) last = line;
-    }
-    const std::size_t comma = last.rfind(',');
-    if (comma == std::string::npos) return false;
-    return contact_open_at_end(summary.value("ended_by", std::string()),
-                               std::stod(last.substr(comma + 1)));
+    const tables::Curve curve = tables::read_force(dir / "force.csv");
+    return !curve.f.empty() &&
+           contact_open_at_end(summary.value("ended_by", std::string()), curve.f.back());
   } catch (const std::exception&) {
     return false;  // unreadable: the case is as the earlier run left it (the tables name it)
   }
@@ -972,8 +967,8 @@ cluster::TaskReport run_case(const StudyDef& def, const fs::path& out, const Par
     }
     const scene::SceneDef scene_def =
         c.source_patch > 0 ? source_case_scene(def, out, pp, c) : case_scene(def, out, pp, c);
-    // The scene at the window doubled n times (run_case_in_window): the same scene, rows and steps
-    // up to the first window's end.
+    // The scene at the window doubled n times (kMaxWindowDoublings): the same scene, rows and
+    // steps up to the first window's end.
     const auto scene_text_at = [&](int n) {
       scene::SceneDef s = scene_def;
       s.duration = std::ldexp(scene_def.duration, n);

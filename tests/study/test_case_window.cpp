@@ -15,7 +15,17 @@ namespace asperity::study {
 namespace {
 namespace fs = std::filesystem;
 
-// The one case of a one-particle, one-placement sphere study in a window of `duration` s.
+// A one-particle, one-placement sphere study in a window of `duration` s, `gap` m above the block.
+StudyDef one_case_study(double duration, double gap = 1e-4) {
+  StudyDef def = load_study(fs::path(ASPERITY_SOURCE_DIR) / "tests/study/sphere_only_study.json");
+  def.particles.resize(1);
+  def.placements = {Placement::lowest};
+  def.duration = duration;
+  def.gap = gap;
+  return def;
+}
+
+// That study's one case, run into a fresh `work`.
 struct OneCase {
   StudyOutcome outcome;
   nlohmann::json summary, record;
@@ -24,11 +34,7 @@ struct OneCase {
 };
 
 OneCase run_one(const fs::path& work, double duration, double gap = 1e-4) {
-  StudyDef def = load_study(fs::path(ASPERITY_SOURCE_DIR) / "tests/study/sphere_only_study.json");
-  def.particles.resize(1);
-  def.placements = {Placement::lowest};
-  def.duration = duration;
-  def.gap = gap;
+  const StudyDef def = one_case_study(duration, gap);
   fs::remove_all(work);
   OneCase r;
   r.outcome = run_study(def, work, {.jobs = 1, .quiet = true});
@@ -64,13 +70,10 @@ TEST(CaseWindow, AContactTheWindowCutsRunsOnInADoubledWindowAsTheSameRun) {
   }
   EXPECT_GT(cut.summary.at("peak_force").get<double>(), 0.0);
   // Resumed, the case is done: its stored window is one of the doublings and its contact closed.
-  StudyDef def = load_study(fs::path(ASPERITY_SOURCE_DIR) / "tests/study/sphere_only_study.json");
-  def.particles.resize(1);
-  def.placements = {Placement::lowest};
-  def.duration = 100e-6;
   const OneCase first = run_one(work / "again", 100e-6);
   ASSERT_EQ(first.record.at("window_doublings"), 1);
-  const StudyOutcome resumed = run_study(def, work / "again", {.jobs = 1, .quiet = true});
+  const StudyOutcome resumed =
+      run_study(one_case_study(100e-6), work / "again", {.jobs = 1, .quiet = true});
   EXPECT_EQ(resumed.skipped, 1);
   EXPECT_EQ(resumed.ran, 0);
   fs::remove_all(work);
